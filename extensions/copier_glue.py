@@ -1,0 +1,108 @@
+"""What Copier loads: Jinja filters and globals, and the hook that adds `package` to templates.
+
+Copier imports this file by path (copier-template-extensions). The `rna` package
+next to it is imported under a name unique to this checkout, because
+`copier update` renders the old and the new template version in one process and
+a plain `import rna` would hand the new version the old version's modules.
+"""
+
+from __future__ import annotations
+
+import getpass
+import hashlib
+import importlib.util
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+from copier.errors import UserMessageError
+from copier_template_extensions import ContextHook
+from jinja2 import pass_context
+from jinja2.ext import Extension
+
+
+def _load_rna():
+    package_dir = Path(__file__).resolve().parent / "rna"
+    name = "rna_" + hashlib.sha256(str(package_dir).encode()).hexdigest()[:12]
+    if name not in sys.modules:
+        spec = importlib.util.spec_from_file_location(
+            name, package_dir / "__init__.py", submodule_search_locations=[str(package_dir)]
+        )
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[name] = module
+        spec.loader.exec_module(module)
+    return sys.modules[name]
+
+
+rna = _load_rna()
+
+
+@pass_context
+def answer_error(context, question: str) -> str:
+    """Copier validator: the broken rule for an answer typed at a prompt, else "".
+
+    Answers given with --data, --data-file or --defaults are checked when
+    rendering starts instead (PackageContext), where a broken rule ends the run
+    with one line; a validator failing there would print a traceback.
+    """
+    conf = context.get("_copier_conf") or {}
+    if conf.get("defaults") or question in (conf.get("data") or {}):
+        return ""
+    return rna.question_error(question, context) or ""
+
+
+def git_config(key: str) -> str:
+    """The user's git setting (user.name, user.email) as a default answer, or ""."""
+    try:
+        result = subprocess.run(["git", "config", "--get", key], capture_output=True,
+                                text=True, timeout=5, check=False)
+    except (OSError, subprocess.SubprocessError):
+        return ""
+    return result.stdout.strip()
+
+
+class RnaExtension(Extension):
+    """Filters and globals for copier.yml and the templates."""
+
+    def __init__(self, environment):
+        super().__init__(environment)
+        environment.globals.update(answer_error=answer_error, git_config=git_config,
+                                   login_name=getpass.getuser)
+        code = rna.code
+        environment.filters.update(
+            package_name_from_folder=rna.names.package_name_from_folder,
+            split_list=rna.split_list,
+            python_literal=rna.parameters.python_literal,
+            python_base_imports=code.python_base_imports,
+            python_node_imports=code.python_node_imports,
+            python_descriptor=code.python_descriptor,
+            python_sample=code.python_sample,
+            python_format=code.python_format,
+            cpp_base_includes=code.cpp_base_includes,
+            cpp_node_includes=code.cpp_node_includes,
+            cpp_parameter_descriptor=code.cpp_parameter_descriptor,
+            cpp_sample=code.cpp_sample,
+            cpp_format=code.cpp_format,
+            cpp_format_arg=code.cpp_format_arg,
+            cmake_targets=code.cmake_targets,
+        )
+
+
+_models: dict[str, object] = {}
+
+
+class PackageContext(ContextHook):
+    """Adds `package`, the checked model of all answers, to every template render."""
+
+    def hook(self, context):
+        if str(context.get("_copier_phase")) != "render":
+            return
+        answers = {key: context.get(key) for key in (*rna.model.QUESTIONS, "copyright_year")}
+        key = json.dumps(answers, sort_keys=True, default=str)
+        if key not in _models:
+            try:
+                _models[key] = rna.build_package(answers)
+            except rna.AnswerError as error:
+                raise UserMessageError(f"rna-template: {error}") from None
+        context["package"] = _models[key]

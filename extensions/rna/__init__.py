@@ -1,0 +1,10 @@
+"""ROS knowledge for rna-template: naming rules, interface types, parameters, licenses.
+
+Everything here is plain Python without Copier, so it is unit-tested on its own;
+`extensions/copier_glue.py` exposes it to the templates.
+"""
+
+from . import code, names
+from .model import AnswerError, Package, build_package, question_error, split_list
+
+__all__ = ["code", "names", "AnswerError", "Package", "build_package", "question_error", "split_list"]

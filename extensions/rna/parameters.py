@@ -1,0 +1,176 @@
+"""Typed node parameters: the types users may name and how C++, Python and YAML spell values."""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass
+
+import yaml
+
+SCALAR_TYPES = ("bool", "int", "double", "string")
+TYPE_ALIASES = {"integer": "int", "float": "double", "str": "string", "boolean": "bool"}
+
+_CPP_SCALARS = {"bool": "bool", "int": "int64_t", "double": "double", "string": "std::string"}
+
+
+@dataclass(frozen=True)
+class ParameterType:
+    """A ROS parameter type: a scalar, or an array of one (`double[]`)."""
+
+    scalar: str
+    is_array: bool = False
+
+    @property
+    def name(self) -> str:
+        return self.scalar + ("[]" if self.is_array else "")
+
+    @property
+    def cpp_type(self) -> str:
+        scalar = _CPP_SCALARS[self.scalar]
+        return f"std::vector<{scalar}>" if self.is_array else scalar
+
+    @property
+    def is_numeric(self) -> bool:
+        return self.scalar in ("int", "double") and not self.is_array
+
+    def __str__(self) -> str:
+        return self.name
+
+
+def parse_type(text: object) -> ParameterType:
+    """`double`, `int[]`, `string_array`, `float` ... -> ParameterType, or ValueError."""
+    if not isinstance(text, str):
+        raise ValueError(f"type '{text}' is not one of {', '.join(SCALAR_TYPES)} (or an array: double[])")
+    name = text.strip().lower()
+    is_array = name.endswith("[]") or name.endswith("_array")
+    name = name.removesuffix("[]").removesuffix("_array")
+    name = TYPE_ALIASES.get(name, name)
+    if name not in SCALAR_TYPES:
+        raise ValueError(f"type '{text}' is not one of {', '.join(SCALAR_TYPES)} (or an array: double[])")
+    return ParameterType(name, is_array)
+
+
+def infer_type(value: object) -> ParameterType:
+    """The parameter type of a YAML default value, when the user gave no type."""
+    if isinstance(value, list):
+        if not value:
+            raise ValueError("an empty list does not say its type: add `type:` (e.g. double[])")
+        element_types = {infer_type(item).scalar for item in value}
+        if element_types == {"int", "double"}:
+            return ParameterType("double", True)
+        if len(element_types) != 1 or any(isinstance(item, list) for item in value):
+            raise ValueError(f"the list {value} mixes types; ROS arrays hold one type")
+        return ParameterType(element_types.pop(), True)
+    if isinstance(value, bool):
+        return ParameterType("bool")
+    if isinstance(value, int):
+        return ParameterType("int")
+    if isinstance(value, float):
+        return ParameterType("double")
+    if isinstance(value, str):
+        return ParameterType("string")
+    raise ValueError(f"cannot tell the type of the default {value!r}: add `type:`")
+
+
+def _coerce_scalar(value: object, scalar: str) -> object:
+    if scalar == "bool":
+        if isinstance(value, bool):
+            return value
+    elif scalar == "int":
+        if isinstance(value, int) and not isinstance(value, bool):
+            return value
+    elif scalar == "double":
+        if isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value):
+            return float(value)
+    elif scalar == "string":
+        if isinstance(value, str):
+            return value
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
+            return str(value)
+    raise ValueError(f"default {value!r} is not a {scalar}")
+
+
+def coerce_default(value: object, ptype: ParameterType) -> object:
+    """Check a default against its type; ints are accepted for doubles."""
+    if value is None:
+        return [] if ptype.is_array else {"bool": False, "int": 0, "double": 0.0, "string": ""}[ptype.scalar]
+    if ptype.is_array:
+        if not isinstance(value, list):
+            raise ValueError(f"default {value!r} is not a list, but the type is {ptype}")
+        return [_coerce_scalar(item, ptype.scalar) for item in value]
+    return _coerce_scalar(value, ptype.scalar)
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """A parameter a node declares, with its default and documentation."""
+
+    name: str
+    type: ParameterType
+    default: object
+    description: str = ""
+    range: tuple[float, float, float] | None = None
+    read_only: bool = False
+
+    @property
+    def has_descriptor(self) -> bool:
+        return bool(self.description or self.range or self.read_only)
+
+    @property
+    def range_kind(self) -> str:
+        """The ParameterDescriptor field for the range: integer_range or floating_point_range."""
+        return "integer_range" if self.type.scalar == "int" else "floating_point_range"
+
+    @property
+    def python_default(self) -> str:
+        return python_literal(self.default)
+
+    @property
+    def cpp_default(self) -> str:
+        return cpp_literal(self.default, self.type)
+
+    @property
+    def yaml_default(self) -> str:
+        return yaml_literal(self.default)
+
+
+def python_literal(value: object) -> str:
+    """A Python literal in the quote style ROS's flake8 settings want (single quotes)."""
+    if isinstance(value, bool):
+        return "True" if value else "False"
+    if isinstance(value, float):
+        return repr(value)
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, str):
+        if "'" in value and '"' not in value:
+            return '"' + value.replace("\\", "\\\\") + '"'
+        return "'" + value.replace("\\", "\\\\").replace("'", "\\'") + "'"
+    if isinstance(value, list):
+        return "[" + ", ".join(python_literal(item) for item in value) + "]"
+    raise TypeError(f"no Python literal for {value!r}")
+
+
+def cpp_literal(value: object, ptype: ParameterType) -> str:
+    """A C++ expression of the parameter's C++ type."""
+    if ptype.is_array:
+        items = ", ".join(cpp_literal(item, ParameterType(ptype.scalar)) for item in value)
+        return f"{ptype.cpp_type}{{{items}}}"
+    if ptype.scalar == "bool":
+        return "true" if value else "false"
+    if ptype.scalar == "int":
+        return str(value)
+    if ptype.scalar == "double":
+        return repr(float(value))
+    # A JSON string literal is also a valid C++ string literal.
+    return json.dumps(value, ensure_ascii=False)
+
+
+def yaml_literal(value: object) -> str:
+    """One YAML scalar or flow list that ROS's parameter parsers read back with the same type."""
+    if isinstance(value, float):
+        return repr(value)
+    if isinstance(value, list):
+        return "[" + ", ".join(yaml_literal(item) for item in value) + "]"
+    return yaml.safe_dump(value, default_flow_style=True, width=10**6).strip().removesuffix("...").strip()

@@ -1,0 +1,186 @@
+"""The answers: every rule the model enforces has a failing case, and the short forms work."""
+
+from __future__ import annotations
+
+import copy
+
+import pytest
+
+from rna import AnswerError, build_package, question_error
+
+VALID = {
+    "package_name": "robot_driver",
+    "description": "Drives the robot",
+    "maintainer": "Ada Lovelace",
+    "maintainer_email": "ada@example.com",
+    "license": "Apache-2.0",
+    "copyright_holder": "Ada Lovelace",
+    "copyright_year": 2026,
+    "ros_distro": "jazzy",
+    "build_type": "ament_cmake",
+    "nodes": [{"name": "driver", "publishers": ["cmd_vel:geometry_msgs/msg/Twist"]}],
+}
+
+
+def answers(**changes):
+    result = copy.deepcopy(VALID)
+    result.update(changes)
+    return result
+
+
+def node(**fields):
+    return answers(nodes=[{"name": "driver", **fields}])
+
+
+def error_of(values) -> AnswerError:
+    with pytest.raises(AnswerError) as caught:
+        build_package(values)
+    return caught.value
+
+
+BROKEN = [
+    # (answers, question, rule)
+    (answers(package_name="My-Bad Pkg"), "package_name", "REP 144"),
+    (answers(description=""), "description", "one line"),
+    (answers(maintainer="a\nb"), "maintainer", "one line"),
+    (answers(maintainer_email="ada"), "maintainer_email", "not an e-mail address"),
+    (answers(license="WTFPL"), "license", "is not one of"),
+    (answers(copyright_holder=" "), "copyright_holder", "one line"),
+    (answers(copyright_year="soon"), "copyright_year", "not a year"),
+    (answers(ros_distro="foxy"), "ros_distro", "is not one of"),
+    (answers(build_type="catkin"), "build_type", "for ROS 2"),
+    (answers(nodes=[]), "nodes", "at least one node"),
+    (answers(nodes="- name: [unclosed"), "nodes", "not valid YAML"),
+    (answers(nodes=[{"name": "Driver"}]), "nodes", "lower_snake_case"),
+    (answers(nodes=[{"name": "a"}, {"name": "a"}]), "nodes", "node 'a' and node 'a' both use the name 'a'"),
+    (answers(nodes=[{"name": "a", "publisher": []}]), "nodes", "did you mean 'publishers'"),
+    (node(language="rust"), "nodes", "is not cpp or python"),
+    (answers(build_type="ament_python", nodes=[{"name": "a", "language": "cpp"}]), "nodes", "Python nodes only"),
+    (node(component=True, language="python"), "nodes", "components are C++ nodes"),
+    (node(lifecycle="yes"), "nodes", "true or false"),
+    (node(description="two\nlines"), "nodes", "one line"),
+    (node(publishers=["chatter"]), "nodes", "write it as topic:type"),
+    (node(publishers=["bad topic:std_msgs/msg/String"]), "nodes", "letters, digits and '_'"),
+    (node(publishers=["chatter:std_srvs/srv/Trigger"]), "nodes", "is a service type, but a message type"),
+    (node(publishers=["chatter:std_msgs/msg/String:fast"]), "nodes", "qos must be a history depth"),
+    (node(publishers=[{"topic": "chatter", "type": "std_msgs/msg/String", "qos": 0}]), "nodes", "between 1 and 10000"),
+    (node(publishers=["chatter:std_msgs/msg/String", "chatter:std_msgs/msg/Int32"]), "nodes",
+     "both use the name 'chatter'"),
+    (node(publishers=[{"topic": "a", "type": "std_msgs/msg/String", "id": "class"}]), "nodes", "Python keyword"),
+    (node(subscribers=["/a/b:std_msgs/msg/String", "a_b:std_msgs/msg/String"]), "nodes",
+     "both use the name 'a_b_subscription'"),
+    (node(subscribers=["configure:std_msgs/msg/String"]), "nodes", "a lifecycle callback"),
+    (node(subscribers=["odom_request:nav_msgs/msg/Odometry"], service_servers=["odom:std_srvs/srv/Trigger"]),
+     "nodes", "both use the name 'on_odom_request'"),
+    (node(service_servers=["reset"]), "nodes", "write it as name:type"),
+    (node(service_clients=["reset:std_msgs/msg/String"]), "nodes", "is a message type, but a service type"),
+    (node(action_servers=["move:nav2_msgs/srv/Move"]), "nodes", "but a action type"),
+    (node(action_clients=[{"name": "~", "type": "test_msgs/action/Fibonacci"}]), "nodes", "no name"),
+    (node(timers=["fast"]), "nodes", "is not a number of seconds"),
+    (node(timers=[0]), "nodes", "more than 0 s"),
+    (node(timers=[{"name": "Fast", "period": 1}]), "nodes", "lower_snake_case"),
+    (node(timers=[0.1, 0.2]), "nodes", "both use the name 'timer'"),
+    (node(parameters=["Rate:double=1.0"]), "nodes", "lower_snake_case"),
+    (node(parameters=["rate"]), "nodes", "give a type or a default"),
+    (node(parameters=["rate:complex=1"]), "nodes", "is not one of"),
+    (node(parameters=["rate:int=1.5"]), "nodes", "is not a int"),
+    (node(parameters=["gains:double[]=[]"]), "nodes", "non-empty default"),
+    (node(parameters=[{"name": "r", "type": "string", "range": [0, 1]}]), "nodes", "only int and double"),
+    (node(parameters=[{"name": "r", "default": 5, "range": [0, 1]}]), "nodes", "outside the range"),
+    (node(parameters=[{"name": "r", "default": 0, "range": [2, 1]}]), "nodes", "above its maximum"),
+    (node(parameters=[{"name": "r", "default": 1, "range": [0, 1.5]}]), "nodes", "whole-number"),
+    (node(parameters=[{"name": "r", "default": 1, "read_only": "no"}]), "nodes", "true or false"),
+    (node(parameters=["rate=1.0", "rate=2.0"]), "nodes", "both use the name 'rate'"),
+]
+
+
+@pytest.mark.parametrize(("values", "question", "rule"), BROKEN)
+def test_each_rule_names_the_question_and_the_rule(values, question, rule):
+    error = error_of(values)
+    assert error.question == question
+    assert rule in str(error)
+    assert "\n" not in str(error)
+    assert str(error).startswith(f"invalid answer to '{question}': ")
+
+
+def test_node_errors_say_which_node():
+    error = error_of(node(publishers=["bad topic:std_msgs/msg/String"]))
+    assert "node 'driver': publisher: topic 'bad topic'" in str(error)
+
+
+def test_short_and_long_forms_give_the_same_model():
+    short = build_package(node(
+        publishers=["cmd_vel:geometry_msgs/msg/Twist:sensor_data"],
+        service_clients=["reset:std_srvs/Trigger"],
+        timers=["control_loop:0.05"],
+        parameters=["gain:double=2", "frame_id=base_link", "gains:double[]=[1, 2.5]"],
+    ))
+    long = build_package(node(
+        publishers=[{"topic": "cmd_vel", "type": "geometry_msgs/msg/Twist", "qos": "sensor_data"}],
+        service_clients=[{"name": "reset", "type": "std_srvs/srv/Trigger"}],
+        timers=[{"name": "control_loop", "period": 0.05}],
+        parameters=[{"name": "gain", "type": "double", "default": 2.0},
+                    {"name": "frame_id", "default": "base_link"},
+                    {"name": "gains", "type": "double[]", "default": [1.0, 2.5]}],
+    ))
+    assert short == long
+
+
+def test_prompt_answers_are_comma_separated_short_forms():
+    package = build_package(node(publishers="a:std_msgs/msg/String, b:std_msgs/msg/Int32",
+                                 parameters="gains:double[]=[1.0, 2.0], name=x"))
+    assert [t.topic for t in package.nodes[0].publishers] == ["a", "b"]
+    assert [p.default for p in package.nodes[0].parameters] == [[1.0, 2.0], "x"]
+
+
+def test_generated_names_come_from_what_the_user_named():
+    package = build_package(node(
+        publishers=["cmd_vel:geometry_msgs/msg/Twist"],
+        subscribers=["/camera/depth/points:sensor_msgs/msg/PointCloud2"],
+        service_servers=["reset:std_srvs/srv/Trigger"],
+        action_clients=["navigate:test_msgs/action/Fibonacci"],
+        timers=[0.1],
+    ))
+    driver = package.nodes[0]
+    assert driver.class_name == "Driver"
+    assert driver.publishers[0].member == "cmd_vel_publisher"
+    assert driver.subscribers[0].callback == "on_camera_depth_points"
+    assert driver.service_servers[0].callback == "on_reset_request"
+    assert driver.action_clients[0].callbacks["send"] == "send_navigate_goal"
+    assert driver.timers[0].member == "timer"
+    assert driver.timers[0].cpp_period == "std::chrono::milliseconds(100)"
+
+
+def test_dependencies_are_exactly_what_the_nodes_use():
+    package = build_package(answers(nodes=[
+        {"name": "driver", "publishers": ["cmd_vel:geometry_msgs/msg/Twist"], "action_servers":
+         ["dock:test_msgs/action/Fibonacci"]},
+        {"name": "monitor", "language": "python", "subscribers": ["odom:nav_msgs/msg/Odometry"],
+         "parameters": [{"name": "rate", "default": 1.0, "description": "Checks per second"}]},
+    ]))
+    assert [(d.name, d.tag) for d in package.dependencies] == [
+        ("geometry_msgs", "depend"), ("nav_msgs", "exec_depend"), ("rcl_interfaces", "exec_depend"),
+        ("rclcpp", "depend"), ("rclcpp_action", "depend"), ("rclpy", "exec_depend"),
+        ("test_msgs", "depend"),
+    ]
+
+
+def test_python_names_avoid_clashes():
+    package = build_package(answers(build_type="ament_python", nodes=[{
+        "name": "odometry",
+        "subscribers": ["odom:nav_msgs/msg/Odometry", "pose:geometry_msgs/msg/Pose", "p2:turtlesim/msg/Pose"],
+    }]))
+    types = {t.full_name: name for t, name in package.nodes[0].python_types.items()}
+    assert types == {"nav_msgs/msg/Odometry": "NavMsgsOdometry", "geometry_msgs/msg/Pose": "GeometryMsgsPose",
+                     "turtlesim/msg/Pose": "TurtlesimPose"}
+
+
+@pytest.mark.parametrize(
+    ("question", "value", "rule"),
+    [("node_name", "Bad", "lower_snake_case"),
+     ("node_publishers", "chatter", "write it as topic:type"),
+     ("node_timers", "0", "more than 0 s"),
+     ("node_parameters", "x:int=a", "is not a int")],
+)
+def test_quick_questions_use_the_same_rules(question, value, rule):
+    assert rule in question_error(question, {**VALID, question: value})

@@ -1,0 +1,211 @@
+"""Unit tests of the pure functions in extensions/rna: names, interface types, parameters, code."""
+
+from __future__ import annotations
+
+import pytest
+
+from rna import code, names
+from rna.interfaces import InterfaceType, parse_interface
+from rna.licenses import LICENSES
+from rna.parameters import ParameterType, coerce_default, cpp_literal, infer_type, parse_type, python_literal, yaml_literal
+
+
+@pytest.mark.parametrize("name", ["turtlesim", "my_robot2", "a1", "target_tracking"])
+def test_package_names_following_rep_144(name):
+    assert names.package_name_error(name) is None
+
+
+@pytest.mark.parametrize(
+    ("name", "rule"),
+    [
+        ("My-Bad Pkg", "REP 144"),
+        ("2robot", "REP 144"),
+        ("robot__arm", "REP 144"),
+        ("robot_", "REP 144"),
+        ("Robot", "REP 144"),
+        ("r", "at least two characters"),
+        ("class", "Python keyword"),
+        ("namespace", "C++ keyword"),
+        ("", "required"),
+    ],
+)
+def test_package_names_breaking_a_rule(name, rule):
+    assert rule in names.package_name_error(name)
+
+
+@pytest.mark.parametrize(
+    ("name", "rule"),
+    [
+        ("Talker", "lower_snake_case"),
+        ("talker-1", "lower_snake_case"),
+        ("9lives", "lower_snake_case"),
+        ("talker_base", "_base"),
+        ("import", "Python keyword"),
+        ("x" * 256, "255"),
+    ],
+)
+def test_node_names_breaking_a_rule(name, rule):
+    assert rule in names.node_name_error(name)
+
+
+@pytest.mark.parametrize("topic", ["chatter", "/cmd_vel", "~/status", "camera/depth/points", "/a_1/B2"])
+def test_valid_topic_names(topic):
+    assert names.topic_name_error(topic) is None
+
+
+@pytest.mark.parametrize(
+    ("topic", "rule"),
+    [
+        ("", "required"),
+        ("cmd vel", "letters, digits and '_'"),
+        ("/2d/scan", "does not start with a digit"),
+        ("scan/", "must not end with '/'"),
+        ("a//b", "'//'"),
+        ("~scan", "'~' must be followed by '/'"),
+        ("a/~/b", "letters, digits and '_'"),
+        ("{node}/status", "substitutions"),
+        ("/", "no name"),
+    ],
+)
+def test_topic_names_breaking_a_rule(topic, rule):
+    assert rule in names.topic_name_error(topic)
+
+
+@pytest.mark.parametrize(
+    ("name", "snake"),
+    [("PointCloud2", "point_cloud2"), ("SetBool", "set_bool"), ("IMU", "imu"), ("GetMapROI", "get_map_roi")],
+)
+def test_camel_to_snake_follows_rosidl(name, snake):
+    assert names.camel_to_snake(name) == snake
+
+
+@pytest.mark.parametrize(
+    ("topic", "identifier"),
+    [("/camera/depth/points", "camera_depth_points"), ("~/cmdVel", "cmd_vel"), ("chatter", "chatter")],
+)
+def test_identifiers_come_from_the_names_users_give(topic, identifier):
+    assert names.identifier_from_name(topic) == identifier
+
+
+def test_members_get_a_suffix_once():
+    assert names.with_suffix("cmd_vel", "publisher") == "cmd_vel_publisher"
+    assert names.with_suffix("timer", "timer") == "timer"
+    assert names.with_suffix("fast_timer", "timer") == "fast_timer"
+
+
+@pytest.mark.parametrize(
+    ("folder", "package"),
+    [("my_pkg", "my_pkg"), ("My-Robot", "my_robot"), ("rna_demo", "rna_demo"), ("2fast", "fast"),
+     ("TargetTracking", "target_tracking"), ("---", "my_package")],
+)
+def test_package_name_defaults_from_the_folder(folder, package):
+    assert names.package_name_from_folder(folder) == package
+
+
+def test_interface_spelling_ros2():
+    twist = parse_interface("geometry_msgs/msg/PointCloud2", "msg")
+    assert twist.cpp_header == "geometry_msgs/msg/point_cloud2.hpp"
+    assert twist.cpp_type == "geometry_msgs::msg::PointCloud2"
+    assert twist.python_module == "geometry_msgs.msg"
+    assert twist.full_name == "geometry_msgs/msg/PointCloud2"
+    action = parse_interface("test_msgs/Fibonacci", "action")
+    assert action.full_name == "test_msgs/action/Fibonacci"
+    assert action.cpp_header == "test_msgs/action/fibonacci.hpp"
+
+
+def test_interface_spelling_ros1():
+    action = parse_interface("actionlib_tutorials/action/Fibonacci", "action", ros=1)
+    assert action.cpp_header == "actionlib_tutorials/FibonacciAction.h"
+    assert action.cpp_type == "actionlib_tutorials::FibonacciAction"
+    assert action.python_module == "actionlib_tutorials.msg"
+    service = parse_interface("std_srvs/srv/SetBool", "srv", ros=1)
+    assert service.full_name == "std_srvs/SetBool"
+    assert service.cpp_header == "std_srvs/SetBool.h"
+
+
+@pytest.mark.parametrize(
+    ("text", "kind", "rule"),
+    [
+        ("std_srvs/srv/Trigger", "msg", "is a service type, but a message type is needed"),
+        ("String", "msg", "write it as"),
+        ("std_msgs/msg/string", "msg", "CamelCase"),
+        ("Std-Msgs/msg/String", "msg", "REP 144"),
+        ("std_msgs/foo/String", "msg", "msg, srv or action"),
+        (None, "srv", "required"),
+    ],
+)
+def test_interface_types_breaking_a_rule(text, kind, rule):
+    with pytest.raises(ValueError, match=rule):
+        parse_interface(text, kind)
+
+
+def test_simple_std_msgs_types_have_a_data_field():
+    assert parse_interface("std_msgs/msg/String", "msg").data_field == "string"
+    assert parse_interface("std_msgs/msg/Float64", "msg").data_field == "float"
+    assert parse_interface("std_msgs/msg/Header", "msg").data_field is None
+    assert InterfaceType("geometry_msgs", "msg", "Twist").data_field is None
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [("double", ParameterType("double")), ("float", ParameterType("double")),
+     ("int[]", ParameterType("int", True)), ("string_array", ParameterType("string", True)),
+     ("Bool", ParameterType("bool"))],
+)
+def test_parameter_types(text, expected):
+    assert parse_type(text) == expected
+
+
+def test_parameter_type_errors():
+    with pytest.raises(ValueError, match="is not one of"):
+        parse_type("complex")
+    with pytest.raises(ValueError, match="empty list"):
+        infer_type([])
+    with pytest.raises(ValueError, match="mixes types"):
+        infer_type([1, "a"])
+    with pytest.raises(ValueError, match="is not a int"):
+        coerce_default(1.5, ParameterType("int"))
+    with pytest.raises(ValueError, match="not a list"):
+        coerce_default(1.0, ParameterType("double", True))
+
+
+def test_parameter_values_are_spelled_per_language():
+    assert infer_type([1, 2.5]) == ParameterType("double", True)
+    assert coerce_default(2, ParameterType("double")) == 2.0
+    assert python_literal("it's") == '"it\'s"'
+    assert python_literal([True, False]) == "[True, False]"
+    assert cpp_literal(2.0, ParameterType("double")) == "2.0"
+    assert cpp_literal([1, 2], ParameterType("int", True)) == "std::vector<int64_t>{1, 2}"
+    assert cpp_literal('say "hi"', ParameterType("string")) == '"say \\"hi\\""'
+    assert yaml_literal("true") == "'true'"
+    assert yaml_literal(1.0) == "1.0"
+    assert yaml_literal([0.5, 1e-06]) == "[0.5, 1e-06]"
+
+
+def test_python_imports_follow_the_google_order():
+    block = code.python_imports([
+        ("std_msgs.msg", "String"), ("rclpy", None), ("time", None), ("rclpy.node", "Node"),
+        ("rclpy.action", "ActionServer"), ("rclpy.action", "CancelResponse"), ("my_pkg.talker_base", "TalkerBase"),
+    ])
+    assert block == (
+        "import time\n\n"
+        "from my_pkg.talker_base import TalkerBase\n\n"
+        "import rclpy\nfrom rclpy.action import ActionServer, CancelResponse\nfrom rclpy.node import Node\n\n"
+        "from std_msgs.msg import String"
+    )
+
+
+def test_cpp_includes_put_standard_headers_first():
+    assert code.cpp_includes(["rclcpp/rclcpp.hpp", "<string>", "<chrono>", "std_msgs/msg/string.hpp"]) == (
+        '#include <chrono>\n#include <string>\n\n#include "rclcpp/rclcpp.hpp"\n#include "std_msgs/msg/string.hpp"'
+    )
+
+
+@pytest.mark.parametrize("spdx", sorted(LICENSES))
+def test_license_headers_are_comment_blocks_with_the_copyright_first(spdx):
+    header = LICENSES[spdx].header("Copyright 2026 Ada Lovelace", "//")
+    lines = header.splitlines()
+    assert lines[0] == "// Copyright 2026 Ada Lovelace"
+    assert all(line == "//" or line.startswith("// ") for line in lines)
+    assert "Copyright 2026 Ada Lovelace" in LICENSES[spdx].text("Copyright 2026 Ada Lovelace") or spdx in (
+        "Apache-2.0", "GPL-3.0-or-later", "LGPL-3.0-or-later")
