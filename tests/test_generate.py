@@ -1,0 +1,207 @@
+"""Generation over a matrix of answers, checked statically (the ros tiers build and run them)."""
+
+from __future__ import annotations
+
+import ast
+import re
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import pytest
+import yaml
+from catkin_pkg.package import parse_package
+
+from conftest import answers_of
+
+ALL_ENDPOINTS = {
+    "publishers": ["cmd_vel:geometry_msgs/msg/Twist", "chatter:std_msgs/msg/String"],
+    "subscribers": ["odom:nav_msgs/msg/Odometry", "/camera/depth/points:sensor_msgs/msg/PointCloud2:sensor_data"],
+    "service_servers": ["reset:std_srvs/srv/Trigger"],
+    "service_clients": ["enable:std_srvs/srv/SetBool"],
+    "action_servers": ["fibonacci:test_msgs/action/Fibonacci"],
+    "action_clients": ["compute:test_msgs/action/Fibonacci"],
+    "timers": ["control_loop:0.05", "slow:2"],
+    "parameters": [
+        {"name": "gain", "type": "double", "default": 2.0, "description": "Proportional gain",
+         "range": [0.0, 10.0]},
+        "frame_id:string=base_link",
+        "gains:double[]=[1.0, 2.5]",
+        {"name": "retries", "default": 3, "read_only": True, "range": [0, 10, 1]},
+        "verbose=true",
+    ],
+}
+
+VARIANTS = {
+    "python": {"build_type": "ament_python", "nodes": [{"name": "brain", **ALL_ENDPOINTS}]},
+    "cpp": {"build_type": "ament_cmake", "nodes": [{"name": "brain", **ALL_ENDPOINTS}]},
+    "mixed": {"build_type": "ament_cmake", "nodes": [
+        {"name": "driver", "language": "cpp", **ALL_ENDPOINTS},
+        {"name": "monitor", "language": "python", **ALL_ENDPOINTS},
+    ]},
+    "lifecycle": {"build_type": "ament_cmake", "nodes": [
+        {"name": "driver", "lifecycle": True, **ALL_ENDPOINTS},
+        {"name": "monitor", "language": "python", "lifecycle": True, **ALL_ENDPOINTS},
+    ]},
+    "component": {"build_type": "ament_cmake", "nodes": [
+        {"name": "camera", "component": True, "publishers": ["image:sensor_msgs/msg/Image:sensor_data"],
+         "timers": [0.033]},
+        {"name": "viewer", "component": True, "lifecycle": True,
+         "subscribers": ["image:sensor_msgs/msg/Image:sensor_data"]},
+    ]},
+}
+
+# What package.xml must list for each variant, written out by hand.
+EXPECTED_DEPENDENCIES = {
+    "python": {"exec_depend": {"action_msgs", "geometry_msgs", "nav_msgs", "rcl_interfaces", "rclpy", "sensor_msgs",
+                               "std_msgs", "std_srvs", "test_msgs", "ros2launch"}, "depend": set()},
+    "cpp": {"depend": {"geometry_msgs", "nav_msgs", "rcl_interfaces", "rclcpp", "rclcpp_action", "sensor_msgs",
+                       "std_msgs", "std_srvs", "test_msgs"}, "exec_depend": {"ros2launch"}},
+    "mixed": {"depend": {"geometry_msgs", "nav_msgs", "rcl_interfaces", "rclcpp", "rclcpp_action", "sensor_msgs",
+                         "std_msgs", "std_srvs", "test_msgs"},
+              "exec_depend": {"action_msgs", "rclpy", "ros2launch"}},
+    "lifecycle": {"depend": {"geometry_msgs", "nav_msgs", "rcl_interfaces", "rclcpp", "rclcpp_action",
+                             "rclcpp_lifecycle", "sensor_msgs", "std_msgs", "std_srvs", "test_msgs"},
+                  "exec_depend": {"action_msgs", "rclpy", "ros2launch"}},
+    "component": {"depend": {"rclcpp", "rclcpp_components", "rclcpp_lifecycle", "sensor_msgs"},
+                  "exec_depend": {"ros2launch"}},
+}
+
+
+def package_dir(destination: Path) -> Path:
+    return destination / answers_of(destination)["package_name"]
+
+
+def dependencies(package_xml: Path) -> dict[str, set[str]]:
+    package = parse_package(str(package_xml))
+    package.validate()
+    assert package.package_format == 3
+    return {
+        "depend": {d.name for d in package.build_depends} & {d.name for d in package.exec_depends}
+        & {d.name for d in package.build_export_depends},
+        "exec_depend": {d.name for d in package.exec_depends} - {d.name for d in package.build_depends},
+    }
+
+
+def launched_nodes(launch_file: Path) -> dict[str, str]:
+    """exec -> the params file each <node> of the launch file loads."""
+    root = ET.parse(launch_file).getroot()
+    return {node.get("exec"): node.find("param").get("from") for node in root.iter("node")}
+
+
+@pytest.mark.parametrize("variant", sorted(VARIANTS))
+def test_variant_generates_a_consistent_package(make_package, variant):
+    answers = {"package_name": "robot", **VARIANTS[variant]}
+    destination = make_package(answers)
+    package = package_dir(destination)
+    nodes = answers["nodes"]
+
+    assert dependencies(package / "package.xml") == EXPECTED_DEPENDENCIES[variant]
+    assert (package / "LICENSE").read_text().startswith("\n                                 Apache License")
+
+    launched = launched_nodes(package / "launch" / "robot.launch.xml")
+    assert launched == {n["name"]: f"$(find-pkg-share robot)/config/{n['name']}.yaml" for n in nodes}
+    for node in nodes:
+        config = yaml.safe_load((package / "config" / f"{node['name']}.yaml").read_text())
+        declared = {p if isinstance(p, str) else p["name"] for p in node.get("parameters", [])}
+        assert {re.split("[:=]", p)[0] for p in declared} == set(config["/**"]["ros__parameters"])
+
+    python_nodes = [n["name"] for n in nodes if n.get("language", "python" if answers["build_type"] ==
+                                                     "ament_python" else "cpp") == "python"]
+    cpp_nodes = [n["name"] for n in nodes if n["name"] not in python_nodes]
+    for name in python_nodes:
+        assert (package / "robot" / f"{name}.py").is_file()
+        assert (package / "robot" / f"{name}_base.py").is_file()
+    for name in cpp_nodes:
+        assert (package / "src" / f"{name}.cpp").is_file()
+        assert (package / "include" / "robot" / f"{name}_base.hpp").is_file()
+    assert (package / "src").exists() == bool(cpp_nodes)
+    assert (package / "robot").exists() == (bool(python_nodes) or answers["build_type"] == "ament_python")
+
+    if answers["build_type"] == "ament_python":
+        setup = (package / "setup.py").read_text()
+        scripts = re.findall(r"'(\w+) = robot\.(\w+):main'", setup)
+        assert scripts == [(name, name) for name in python_nodes]
+        assert not (package / "CMakeLists.txt").exists()
+    else:
+        cmake = (package / "CMakeLists.txt").read_text()
+        for node in nodes:
+            if node.get("component"):
+                assert f'EXECUTABLE {node["name"]})' in cmake
+            elif node["name"] in cpp_nodes:
+                assert f"add_executable({node['name']} src/{node['name']}.cpp)" in cmake
+            else:
+                assert f"RENAME {node['name']})" in cmake
+        assert not (package / "setup.py").exists()
+
+
+@pytest.mark.parametrize("variant", sorted(VARIANTS))
+def test_generated_python_has_no_undefined_names(make_package, variant):
+    """A quick pyflakes pass (ruff); the ros tier runs ament_flake8 and ament_pep257."""
+    package = package_dir(make_package({"package_name": "robot", **VARIANTS[variant]}))
+    files = sorted(package.rglob("*.py"))
+    for path in files:
+        ast.parse(path.read_text(), str(path))
+    if files:
+        result = subprocess.run([sys.executable, "-m", "ruff", "check", "--no-cache", "--isolated",
+                                 "--select", "F,E9,W6", *map(str, files)], capture_output=True, text=True)
+        assert result.returncode == 0, result.stdout + result.stderr
+
+
+def test_defaults_make_a_talker_and_a_listener(make_package):
+    destination = make_package(name="rna_demo")
+    answers = answers_of(destination)
+    assert answers["package_name"] == "rna_demo"
+    assert answers["build_type"] == "ament_python"
+    package = destination / "rna_demo"
+    talker = (package / "rna_demo" / "talker.py").read_text()
+    listener = (package / "rna_demo" / "listener.py").read_text()
+    assert "self.chatter_publisher.publish(msg)" in talker
+    assert "def on_chatter(self, msg):" in listener
+    assert "self.create_subscription(\n            String, 'chatter', self.on_chatter," in (
+        package / "rna_demo" / "listener_base.py").read_text()
+    assert set(launched_nodes(package / "launch" / "rna_demo.launch.xml")) == {"talker", "listener"}
+
+
+@pytest.mark.parametrize("spdx", ["Apache-2.0", "BSD-3-Clause", "MIT", "GPL-3.0-or-later", "LGPL-3.0-or-later"])
+def test_license_choice_writes_license_and_headers(make_package, spdx):
+    package = package_dir(make_package({"license": spdx, "build_type": "ament_cmake", "package_name": "lic",
+                                        "nodes": [{"name": "a"}, {"name": "b", "language": "python"}]}))
+    assert parse_package(str(package / "package.xml")).licenses == [spdx]
+    license_text = (package / "LICENSE").read_text()
+    for path in [package / "src" / "a.cpp", package / "include" / "lic" / "a_base.hpp",
+                 package / "lic" / "b.py", package / "lic" / "b_base.py"]:
+        lines = path.read_text().splitlines()
+        if lines[0].startswith("#!"):
+            lines = lines[1:]
+        assert re.fullmatch(r"(#|//) Copyright 2026 Ada Lovelace", lines[0]), path
+    if spdx in ("MIT", "BSD-3-Clause"):
+        assert "Copyright 2026 Ada Lovelace" in license_text
+
+
+def test_one_node_answered_prompt_by_prompt(make_package):
+    """The quick questions build `nodes` from comma-separated short forms."""
+    destination = make_package({
+        "package_name": "mover", "build_type": "ament_cmake", "node_setup": "one", "node_name": "motion_control",
+        "node_language": "python", "node_publishers": "cmd_vel:geometry_msgs/msg/Twist",
+        "node_subscribers": "odom:nav_msgs/msg/Odometry, scan:sensor_msgs/msg/LaserScan:sensor_data",
+        "node_timers": "0.1", "node_parameters": "max_speed:double=0.5, frame_id=base_link",
+    })
+    nodes = answers_of(destination)["nodes"]
+    assert nodes == [{
+        "name": "motion_control", "language": "python",
+        "publishers": ["cmd_vel:geometry_msgs/msg/Twist"],
+        "subscribers": ["odom:nav_msgs/msg/Odometry", "scan:sensor_msgs/msg/LaserScan:sensor_data"],
+        "service_servers": [], "service_clients": [], "action_servers": [], "action_clients": [],
+        "timers": ["0.1"], "parameters": ["max_speed:double=0.5", "frame_id=base_link"],
+    }]
+    assert (destination / "mover" / "mover" / "motion_control.py").is_file()
+
+
+def test_python_names_that_clash_are_imported_under_their_package(make_package):
+    package = package_dir(make_package({"package_name": "poses", "build_type": "ament_python", "nodes": [
+        {"name": "pose", "subscribers": ["a:geometry_msgs/msg/Pose", "b:turtlesim/msg/Pose"]}]}))
+    base = (package / "poses" / "pose_base.py").read_text()
+    assert "from geometry_msgs.msg import Pose as GeometryMsgsPose" in base
+    assert "from turtlesim.msg import Pose as TurtlesimPose" in base
