@@ -193,7 +193,6 @@ def test_one_node_answered_prompt_by_prompt(make_package):
         "name": "motion_control", "language": "python",
         "publishers": ["cmd_vel:geometry_msgs/msg/Twist"],
         "subscribers": ["odom:nav_msgs/msg/Odometry", "scan:sensor_msgs/msg/LaserScan:sensor_data"],
-        "service_servers": [], "service_clients": [], "action_servers": [], "action_clients": [],
         "timers": ["0.1"], "parameters": ["max_speed:double=0.5", "frame_id=base_link"],
     }]
     assert (destination / "mover" / "mover" / "motion_control.py").is_file()

@@ -1,0 +1,133 @@
+"""The questions as users meet them: the copier CLI, non-interactive and at a terminal."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pexpect
+import pytest
+import yaml
+
+from conftest import FIXED_ANSWERS, answers_of
+
+COPIER = str(Path(sys.executable).with_name("copier"))
+
+
+def copier_copy(template: Path, destination: Path, *args: str) -> subprocess.CompletedProcess:
+    data = [f"--data={key}={value}" for key, value in FIXED_ANSWERS.items()]
+    return subprocess.run([COPIER, "copy", "--trust", "--defaults", "--vcs-ref=HEAD", *data, *args,
+                           str(template), str(destination)], capture_output=True, text=True, stdin=subprocess.DEVNULL,
+                          timeout=120)
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["--data", "package_name=My-Bad Pkg"], "invalid answer to 'package_name': 'My-Bad Pkg' breaks REP 144"),
+        (["--data", "maintainer_email=nobody"], "invalid answer to 'maintainer_email': 'nobody' is not an e-mail"),
+        (["--data", "nodes=[{name: Talker}]"], "invalid answer to 'nodes': 'Talker' is not a valid node name"),
+        (["--data", "nodes=[{name: t, publishers: ['a b:std_msgs/msg/String']}]"],
+         "invalid answer to 'nodes': node 't': publisher: topic 'a b'"),
+        (["--data", "nodes=[{name: t, subscribers: [x:std_srvs/srv/Empty]}]"],
+         "invalid answer to 'nodes': node 't': 'std_srvs/srv/Empty' is a service type"),
+        (["--data", "nodes=[{name: t, language: cpp}]"], "an ament_python package holds Python nodes only"),
+    ],
+)
+def test_bad_answers_give_one_line_and_write_nothing(template_dir, tmp_path, args, message):
+    destination = tmp_path / "out"
+    result = copier_copy(template_dir, destination, *args)
+    assert result.returncode == 1
+    assert "Traceback" not in result.stderr
+    errors = [line for line in result.stderr.splitlines() if "invalid answer" in line]
+    assert len(errors) == 1 and message in errors[0], result.stderr
+    assert not destination.exists()
+
+
+def test_bad_answers_leave_an_existing_folder_untouched(template_dir, tmp_path):
+    destination = tmp_path / "existing"
+    destination.mkdir()
+    (destination / "notes.txt").write_text("mine\n")
+    data = tmp_path / "bad.yml"
+    data.write_text(yaml.safe_dump({"package_name": "ok_name", "nodes": [{"name": "a", "timers": [0]}]}))
+    result = copier_copy(template_dir, destination, "--data-file", str(data))
+    assert result.returncode == 1, result.stderr
+    assert "invalid answer to 'nodes': node 'a': timer 'timer': period must be more than 0 s" in result.stderr
+    assert [p.name for p in destination.iterdir()] == ["notes.txt"]
+
+
+def test_without_trust_copier_refuses_the_extensions(template_dir, tmp_path):
+    result = subprocess.run([COPIER, "copy", "--defaults", "--vcs-ref=HEAD", str(template_dir), str(tmp_path / "x")],
+                            capture_output=True, text=True, stdin=subprocess.DEVNULL, timeout=120)
+    assert result.returncode == 4
+    assert "unsafe" in result.stderr
+
+
+def test_defaults_through_the_cli(template_dir, tmp_path):
+    result = copier_copy(template_dir, tmp_path / "demo_pkg")
+    assert result.returncode == 0, result.stderr
+    assert answers_of(tmp_path / "demo_pkg")["package_name"] == "demo_pkg"
+    assert (tmp_path / "demo_pkg" / "demo_pkg" / "demo_pkg" / "talker.py").is_file()
+
+
+# ----------------------------------------------------------------------------- at a terminal
+
+DOWN = "\x1b[B"
+
+
+@pytest.fixture
+def terminal(template_dir, tmp_path):
+    """Start `copier copy` in a pseudo-terminal, as a person would."""
+    # No cursor-position requests: pexpect does not answer them, and each would wait.
+    env = {**os.environ, "TERM": "xterm", "PROMPT_TOOLKIT_NO_CPR": "1"}
+    child = pexpect.spawn(COPIER, ["copy", "--trust", "--vcs-ref=HEAD", str(template_dir), str(tmp_path / "mover")],
+                          env=env, encoding="utf-8", timeout=30, dimensions=(50, 200))
+    child.logfile_read = (tmp_path / "terminal.log").open("w")
+    yield child
+    child.close(force=True)
+
+
+def answer(child: pexpect.spawn, prompt: str, keys: str) -> None:
+    child.expect(prompt)
+    child.send(keys + "\r")
+
+
+def test_one_node_prompt_by_prompt_without_yaml(terminal, tmp_path):
+    child = terminal
+    answer(child, "Package name", "\b" * 20 + "Bad Name")
+    child.expect("REP 144")  # the validator keeps the prompt open
+    child.send("\b" * 20 + "mover\r")
+    answer(child, "One sentence", "")
+    answer(child, "full name", "\b" * 60 + "Ada Lovelace")
+    answer(child, "e-mail", "\b" * 80 + "ada@example.com")
+    answer(child, "License", "")
+    answer(child, "Copyright holder", "")
+    answer(child, "ROS 2 distribution", "")
+    answer(child, "ament_python holds", DOWN)  # ament_cmake
+    answer(child, "describe the package's nodes", DOWN)  # one node
+    answer(child, "Node name", "\b" * 10 + "motion_control")
+    answer(child, "Language of the node", DOWN)  # Python, through ament_cmake_python
+    answer(child, "Topics it publishes", "cmd_vel:geometry_msgs/msg/Twist")
+    answer(child, "Topics it subscribes to", "odom:nav_msgs/msg/Odometry, scan:sensor_msgs/msg/LaserScan")
+    answer(child, "Services it offers", "")
+    answer(child, "Services it calls", "reset:std_srvs/srv/Trigger")
+    answer(child, "Actions it executes", "")
+    answer(child, "Actions it sends goals to", "")
+    answer(child, "Timers", "0.1")
+    answer(child, "Parameters", "max_speed:double=0.5")
+    child.expect(pexpect.EOF, timeout=60)
+    child.close()
+    assert child.exitstatus == 0, (tmp_path / "terminal.log").read_text()
+
+    answers = answers_of(tmp_path / "mover")
+    assert answers["build_type"] == "ament_cmake"
+    node = answers["nodes"][0]
+    assert (node["name"], node["language"]) == ("motion_control", "python")
+    assert node["subscribers"] == ["odom:nav_msgs/msg/Odometry", "scan:sensor_msgs/msg/LaserScan"]
+    base = (tmp_path / "mover" / "mover" / "mover" / "motion_control_base.py").read_text()
+    assert "def on_scan(self, msg):" in base
+    assert "self.declare_parameter('max_speed', 0.5)" in base
+    assert shutil.which("git")
