@@ -52,6 +52,12 @@ def answer_error(context, question: str) -> str:
     return rna.question_error(question, context) or ""
 
 
+@pass_context
+def describe_nodes(context) -> str:
+    """The default description: what the nodes answered so far do."""
+    return rna.model.describe_nodes(context)
+
+
 def git_config(key: str) -> str:
     """The user's git setting (user.name, user.email) as a default answer, or ""."""
     try:
@@ -67,13 +73,14 @@ class RnaExtension(Extension):
 
     def __init__(self, environment):
         super().__init__(environment)
-        environment.globals.update(answer_error=answer_error, git_config=git_config,
-                                   login_name=getpass.getuser)
+        environment.globals.update(answer_error=answer_error, describe_nodes=describe_nodes,
+                                   git_config=git_config, login_name=getpass.getuser)
         code = rna.code
         environment.filters.update(
             package_name_from_folder=rna.names.package_name_from_folder,
             split_list=rna.split_list,
             python_literal=rna.parameters.python_literal,
+            python_text=code.python_text,
             python_base_imports=code.python_base_imports,
             python_node_imports=code.python_node_imports,
             python_descriptor=code.python_descriptor,
@@ -86,6 +93,10 @@ class RnaExtension(Extension):
             cpp_format=code.cpp_format,
             cpp_format_arg=code.cpp_format_arg,
             cmake_targets=code.cmake_targets,
+            ros1_python_base_imports=code.ros1_python_base_imports,
+            ros1_python_node_imports=code.ros1_python_node_imports,
+            ros1_cpp_base_includes=code.ros1_cpp_base_includes,
+            ros1_cpp_node_includes=code.ros1_cpp_node_includes,
         )
 
 

@@ -184,3 +184,37 @@ def test_python_names_avoid_clashes():
 )
 def test_quick_questions_use_the_same_rules(question, value, rule):
     assert rule in question_error(question, {**VALID, question: value})
+
+
+def test_several_publishers_get_a_message_variable_each():
+    one = build_package(node(publishers=["a:std_msgs/msg/String"], timers=[1])).nodes[0]
+    two = build_package(node(publishers=["a:std_msgs/msg/String", "/b/c:std_msgs/msg/Int32"], timers=[1])).nodes[0]
+    assert list(one.message_variables.values()) == ["msg"]
+    assert list(two.message_variables.values()) == ["a_msg", "b_c_msg"]
+
+
+def test_default_description_says_what_the_nodes_do():
+    from rna.model import describe_nodes
+
+    assert describe_nodes({**VALID, "nodes": [
+        {"name": "talker", "publishers": ["chatter:std_msgs/msg/String"]},
+        {"name": "listener", "subscribers": ["chatter:std_msgs/msg/String"]}]}) == (
+        "The talker node publishes chatter; the listener node subscribes to chatter")
+    assert describe_nodes({**VALID, "nodes": [{"name": f"n{i}"} for i in range(4)]}) == "Nodes n0, n1, n2 and n3"
+    assert describe_nodes({**VALID, "nodes": "not: [valid"}) == "ROS nodes"
+
+
+def test_ros1_rules():
+    error = error_of(answers(ros_distro="noetic", build_type="catkin", nodes=[{"name": "a", "lifecycle": True}]))
+    assert "lifecycle and component nodes are ROS 2 features" in str(error)
+    error = error_of(answers(ros_distro="noetic", build_type="catkin",
+                             nodes=[{"name": "a", "parameters": ["node_handle=1"]}]))
+    assert "a member of the base class and parameter 'node_handle'" in str(error)
+    package = build_package(answers(ros_distro="noetic", build_type="catkin", nodes=[
+        {"name": "a", "language": "python", "subscribers": ["odom:nav_msgs/msg/Odometry"],
+         "action_clients": ["dock:actionlib/action/Test"]}]))
+    a = package.nodes[0]
+    assert a.executable == "a.py"
+    assert a.subscribers[0].member == "odom_subscriber"
+    assert [d.name for d in package.dependencies] == ["actionlib", "actionlib_msgs", "nav_msgs", "rospy"]
+    assert all(d.tag == "depend" for d in package.dependencies)

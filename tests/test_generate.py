@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import ast
+import os
 import re
 import subprocess
 import sys
@@ -33,6 +34,9 @@ ALL_ENDPOINTS = {
     ],
 }
 
+ROS1_ENDPOINTS = {**ALL_ENDPOINTS, "action_servers": ["fibonacci:actionlib/action/Test"],
+                  "action_clients": ["compute:actionlib/action/TwoInts"]}
+
 VARIANTS = {
     "python": {"build_type": "ament_python", "nodes": [{"name": "brain", **ALL_ENDPOINTS}]},
     "cpp": {"build_type": "ament_cmake", "nodes": [{"name": "brain", **ALL_ENDPOINTS}]},
@@ -50,6 +54,10 @@ VARIANTS = {
         {"name": "viewer", "component": True, "lifecycle": True,
          "subscribers": ["image:sensor_msgs/msg/Image:sensor_data"]},
     ]},
+    "ros1": {"ros_distro": "noetic", "nodes": [
+        {"name": "driver", "language": "cpp", **ROS1_ENDPOINTS},
+        {"name": "monitor", "language": "python", **ROS1_ENDPOINTS},
+    ]},
 }
 
 # What package.xml must list for each variant, written out by hand.
@@ -66,6 +74,8 @@ EXPECTED_DEPENDENCIES = {
                   "exec_depend": {"action_msgs", "rclpy", "ros2launch"}},
     "component": {"depend": {"rclcpp", "rclcpp_components", "rclcpp_lifecycle", "sensor_msgs"},
                   "exec_depend": {"ros2launch"}},
+    "ros1": {"depend": {"actionlib", "actionlib_msgs", "geometry_msgs", "nav_msgs", "roscpp", "rospy",
+                        "sensor_msgs", "std_msgs", "std_srvs"}, "exec_depend": set()},
 }
 
 
@@ -85,9 +95,17 @@ def dependencies(package_xml: Path) -> dict[str, set[str]]:
 
 
 def launched_nodes(launch_file: Path) -> dict[str, str]:
-    """exec -> the params file each <node> of the launch file loads."""
+    """executable -> the params file each <node> of the launch file loads (ROS 2 or ROS 1)."""
     root = ET.parse(launch_file).getroot()
-    return {node.get("exec"): node.find("param").get("from") for node in root.iter("node")}
+    nodes = {}
+    for node in root.iter("node"):
+        if node.get("exec"):
+            nodes[node.get("exec")] = node.find("param").get("from")
+        else:
+            loaded = node.find("rosparam")
+            assert loaded.get("command") == "load"
+            nodes[node.get("type")] = loaded.get("file")
+    return nodes
 
 
 @pytest.mark.parametrize("variant", sorted(VARIANTS))
@@ -100,16 +118,39 @@ def test_variant_generates_a_consistent_package(make_package, variant):
     assert dependencies(package / "package.xml") == EXPECTED_DEPENDENCIES[variant]
     assert (package / "LICENSE").read_text().startswith("\n                                 Apache License")
 
-    launched = launched_nodes(package / "launch" / "robot.launch.xml")
-    assert launched == {n["name"]: f"$(find-pkg-share robot)/config/{n['name']}.yaml" for n in nodes}
+    ros1 = answers.get("ros_distro") == "noetic"
+    python_nodes = [n["name"] for n in nodes if n.get("language", "python" if answers.get("build_type") ==
+                                                     "ament_python" else "cpp") == "python"]
+    cpp_nodes = [n["name"] for n in nodes if n["name"] not in python_nodes]
+
+    if ros1:
+        launched = launched_nodes(package / "launch" / "robot.launch")
+        assert launched == {(n["name"] + ".py" if n["name"] in python_nodes else n["name"]):
+                            f"$(find robot)/config/{n['name']}.yaml" for n in nodes}
+    else:
+        launched = launched_nodes(package / "launch" / "robot.launch.xml")
+        assert launched == {n["name"]: f"$(find-pkg-share robot)/config/{n['name']}.yaml" for n in nodes}
     for node in nodes:
         config = yaml.safe_load((package / "config" / f"{node['name']}.yaml").read_text())
         declared = {p if isinstance(p, str) else p["name"] for p in node.get("parameters", [])}
-        assert {re.split("[:=]", p)[0] for p in declared} == set(config["/**"]["ros__parameters"])
+        loaded = config if ros1 else config["/**"]["ros__parameters"]
+        assert {re.split("[:=]", p)[0] for p in declared} == set(loaded)
 
-    python_nodes = [n["name"] for n in nodes if n.get("language", "python" if answers["build_type"] ==
-                                                     "ament_python" else "cpp") == "python"]
-    cpp_nodes = [n["name"] for n in nodes if n["name"] not in python_nodes]
+    if ros1:
+        for name in python_nodes:
+            assert os.access(package / "scripts" / f"{name}.py", os.X_OK)
+            assert (package / "src" / "robot" / f"{name}_base.py").is_file()
+        for name in cpp_nodes:
+            assert (package / "src" / f"{name}.cpp").is_file()
+            assert (package / "include" / "robot" / f"{name}_base.h").is_file()
+        cmake = (package / "CMakeLists.txt").read_text()
+        for name in cpp_nodes:
+            assert f"add_executable({name} src/{name}.cpp)" in cmake
+        for name in python_nodes:
+            assert f"  scripts/{name}.py\n" in cmake
+        assert ("catkin_python_setup()" in cmake) == bool(python_nodes)
+        return
+
     for name in python_nodes:
         assert (package / "robot" / f"{name}.py").is_file()
         assert (package / "robot" / f"{name}_base.py").is_file()

@@ -100,12 +100,11 @@ def test_one_node_prompt_by_prompt_without_yaml(terminal, tmp_path):
     answer(child, "Package name", "\b" * 20 + "Bad Name")
     child.expect("REP 144")  # the validator keeps the prompt open
     child.send("\b" * 20 + "mover\r")
-    answer(child, "One sentence", "")
     answer(child, "full name", "\b" * 60 + "Ada Lovelace")
     answer(child, "e-mail", "\b" * 80 + "ada@example.com")
     answer(child, "License", "")
     answer(child, "Copyright holder", "")
-    answer(child, "ROS 2 distribution", "")
+    answer(child, "ROS distribution", "")
     answer(child, "ament_python holds", DOWN)  # ament_cmake
     answer(child, "describe the package's nodes", DOWN)  # one node
     answer(child, "Node name", "\b" * 10 + "motion_control")
@@ -118,6 +117,7 @@ def test_one_node_prompt_by_prompt_without_yaml(terminal, tmp_path):
     answer(child, "Actions it sends goals to", "")
     answer(child, "Timers", "0.1")
     answer(child, "Parameters", "max_speed:double=0.5")
+    answer(child, "One sentence", "")
     child.expect(pexpect.EOF, timeout=60)
     child.close()
     assert child.exitstatus == 0, (tmp_path / "terminal.log").read_text()
@@ -127,6 +127,8 @@ def test_one_node_prompt_by_prompt_without_yaml(terminal, tmp_path):
     node = answers["nodes"][0]
     assert (node["name"], node["language"]) == ("motion_control", "python")
     assert node["subscribers"] == ["odom:nav_msgs/msg/Odometry", "scan:sensor_msgs/msg/LaserScan"]
+    assert answers["description"] == (
+        "The motion_control node publishes cmd_vel, subscribes to odom and scan and calls reset")
     base = (tmp_path / "mover" / "mover" / "mover" / "motion_control_base.py").read_text()
     assert "def on_scan(self, msg):" in base
     assert "self.declare_parameter('max_speed', 0.5)" in base

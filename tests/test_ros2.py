@@ -218,7 +218,7 @@ def variant_packages(template_dir, tmp_path_factory) -> dict[str, Path]:
     return packages
 
 
-@pytest.mark.parametrize("variant", ["defaults", "lifecycle", "mixed", "python"])
+@pytest.mark.parametrize("variant", ["defaults", "lifecycle", "mixed", "python", "ros1"])
 def test_generated_python_passes_flake8_and_pep257(ros2, variant_packages, variant):
     files = sorted(variant_packages[variant].rglob("*.py"))
     assert files
@@ -228,7 +228,7 @@ def test_generated_python_passes_flake8_and_pep257(ros2, variant_packages, varia
 
 
 @pytest.mark.parametrize("variant", [name for name, answers in sorted(VARIANTS.items())
-                                     if answers["build_type"] == "ament_cmake"])
+                                     if answers.get("build_type") == "ament_cmake" or name == "ros1"])
 def test_generated_cpp_passes_cpplint_and_uncrustify(ros2, variant_packages, variant):
     files = sorted(variant_packages[variant].rglob("*.[ch]pp"))
     assert files

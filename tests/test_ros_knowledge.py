@@ -209,3 +209,11 @@ def test_license_headers_are_comment_blocks_with_the_copyright_first(spdx):
     assert all(line == "//" or line.startswith("// ") for line in lines)
     assert "Copyright 2026 Ada Lovelace" in LICENSES[spdx].text("Copyright 2026 Ada Lovelace") or spdx in (
         "Apache-2.0", "GPL-3.0-or-later", "LGPL-3.0-or-later")
+
+
+def test_long_python_text_is_split_to_fit():
+    assert code.python_text("short", 16, 8) == "'short'"
+    long = code.python_text("word " * 40, 16, 8)
+    lines = long.splitlines()
+    assert lines[0] == "(" and all(len(line) <= 99 for line in lines)
+    assert eval(long) == "word " * 40  # noqa: S307 - our own literal

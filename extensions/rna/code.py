@@ -9,6 +9,7 @@ the rest), each group sorted.
 from __future__ import annotations
 
 import json
+import textwrap
 import sys
 from collections import defaultdict
 from collections.abc import Iterable
@@ -54,14 +55,18 @@ def _top(module: str) -> str:
 
 
 def cpp_includes(headers: Iterable[str]) -> str:
-    """Headers ('<chrono>' or 'rclcpp/rclcpp.hpp') -> the #include block."""
-    system = sorted({h for h in headers if h.startswith("<")})
-    local = sorted({h for h in headers if not h.startswith("<")})
+    """Headers ('<chrono>' or 'rclcpp/rclcpp.hpp') -> the #include block.
+
+    Standard headers first, then the others in quotes, as in the ROS tutorials of
+    both generations (cpplint counts <ros/ros.h> as a C system header).
+    """
+    standard = sorted({h for h in headers if h.startswith("<")})
+    others = sorted({h for h in headers if not h.startswith("<")})
     blocks = []
-    if system:
-        blocks.append("\n".join(f"#include {h}" for h in system))
-    if local:
-        blocks.append("\n".join(f'#include "{h}"' for h in local))
+    if standard:
+        blocks.append("\n".join(f"#include {h}" for h in standard))
+    if others:
+        blocks.append("\n".join(f'#include "{h}"' for h in others))
     return "\n\n".join(blocks)
 
 
@@ -164,6 +169,8 @@ def cpp_base_includes(node) -> str:
         headers.append("<memory>")
     if node.actions:
         headers.append("rclcpp_action/rclcpp_action.hpp")
+    if node.action_clients:
+        headers.append("<atomic>")
     if node.lifecycle:
         headers += ["rclcpp_lifecycle/lifecycle_node.hpp", "rclcpp_lifecycle/lifecycle_publisher.hpp"]
     if any(p.has_descriptor for p in node.parameters):
@@ -249,3 +256,87 @@ _CMAKE_TARGETS = {
 def cmake_targets(node) -> list[str]:
     """What a C++ node's target links: the client library targets, ${<pkg>_TARGETS} otherwise."""
     return [_CMAKE_TARGETS.get(dep, f"${{{dep}_TARGETS}}") for dep in node.dependencies]
+
+
+# --------------------------------------------------------------------------- ROS 1 nodes
+
+
+def _ros1_parts(node, parts: Iterable[tuple[object, str]]) -> list[tuple[str, str]]:
+    """(type, part) -> imports of e.g. TriggerResponse or FibonacciGoal, aliased like the type."""
+    imports = []
+    for interface, part in parts:
+        alias = node.python_types[interface] + part
+        name = interface.name + part
+        imports.append((interface.python_module, name if alias == name else f"{name} as {alias}"))
+    return imports
+
+
+def ros1_python_base_imports(node) -> str:
+    """Imports of the generated src/<package>/<node>_base.py (rospy)."""
+    parts = [(t.type, "") for t in node.publishers + node.subscribers]
+    parts += [(s.type, "") for s in node.service_servers + node.service_clients]
+    parts += [(s.type, "Response") for s in node.service_servers]
+    parts += [(a.type, "Action") for a in node.actions]
+    imports = [("rospy", None), *_ros1_parts(node, parts)]
+    if node.actions:
+        imports.append(("actionlib", None))
+    return python_imports(imports)
+
+
+def ros1_python_node_imports(node) -> str:
+    """Imports of the user's scripts/<node>.py: what its starter code uses."""
+    parts = []
+    if node.driver_timer:
+        parts += [(t.type, "") for t in node.publishers]
+        parts += [(s.type, "Request") for s in node.service_clients]
+        parts += [(a.type, "Goal") for a in node.action_clients]
+    parts += [(s.type, "Response") for s in node.service_servers]
+    parts += [(a.type, part) for a in node.action_servers for part in ("Feedback", "Result")]
+    imports = [("rospy", None), (f"{node.package}.{node.base_name}", node.base_class_name),
+               *_ros1_parts(node, parts)]
+    if node.action_clients:
+        imports.append(("actionlib_msgs.msg", "GoalStatus"))
+    return python_imports(imports)
+
+
+def ros1_cpp_base_includes(node) -> str:
+    """Includes of the generated include/<package>/<node>_base.h (roscpp)."""
+    headers = ["ros/ros.h", *(t.cpp_header for t in node.interfaces)]
+    if node.action_servers:
+        headers.append("actionlib/server/simple_action_server.h")
+    if node.action_clients:
+        headers.append("actionlib/client/simple_action_client.h")
+    if any(p.type.scalar == "string" for p in node.parameters):
+        headers.append("<string>")
+    if any(p.type.is_array for p in node.parameters):
+        headers.append("<vector>")
+    return cpp_includes(headers)
+
+
+def ros1_cpp_node_includes(node) -> str:
+    """Includes of the user's src/<node>.cpp (roscpp)."""
+    headers = [f"{node.package}/{node.base_name}.h", "ros/ros.h"]
+    if node.driver_timer:
+        headers += [t.type.cpp_header for t in node.publishers]
+        headers += [s.type.cpp_header for s in node.service_clients]
+        headers += [a.type.cpp_header for a in node.action_clients]
+        if node.publishers:
+            headers.append("<cstddef>")
+        if any(t.type.data_field in ("string", "int", "float") for t in node.publishers):
+            headers.append("<string>")
+    if any(t.type.data_field in ("int", "float") for t in node.subscribers):
+        headers.append("<string>")
+    headers += [a.type.cpp_header for a in node.action_servers]
+    return cpp_includes(headers)
+
+
+def python_text(text: str, column: int, indent: int, width: int = 99) -> str:
+    """A string literal starting at `column` that fits in `width` columns.
+
+    Too long, it becomes parenthesised parts, one per line, indented by `indent`.
+    """
+    literal = python_literal(text)
+    if column + len(literal) + 1 <= width:
+        return literal
+    chunks = textwrap.wrap(text, width - indent - 4, drop_whitespace=False)
+    return "(\n" + "\n".join(" " * indent + python_literal(chunk) for chunk in chunks) + ")"

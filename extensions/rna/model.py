@@ -30,6 +30,9 @@ LANGUAGES = {"cpp": "cpp", "c++": "cpp", "python": "python", "py": "python"}
 QOS_PROFILES = {"sensor_data": 5}
 _EMAIL = re.compile(r"[^@\s]+@[^@\s]+\.[^@\s]+")
 
+# Members the generated base classes declare besides the endpoints'.
+BASE_MEMBERS = ("node_handle", "private_node_handle", "action_callback_group", "count")
+
 # Names the generated Python files import or define besides interface types.
 PYTHON_RESERVED = frozenset({
     "ActionClient", "ActionServer", "CancelResponse", "ExternalShutdownException",
@@ -78,7 +81,10 @@ class Topic:
 
     @property
     def member(self) -> str:
-        return names.with_suffix(self.id, "publisher" if self.role == "publisher" else "subscription")
+        if self.role == "publisher":
+            return names.with_suffix(self.id, "publisher")
+        # The ROS 1 class is a Subscriber, the ROS 2 one a Subscription.
+        return names.with_suffix(self.id, "subscriber" if self.type.ros == 1 else "subscription")
 
     @property
     def callback(self) -> str | None:
@@ -140,12 +146,18 @@ class Action:
             return {"goal": f"on_{self.id}_goal", "cancel": f"on_{self.id}_cancel",
                     "execute": f"execute_{self.id}"}
         return {"send": f"send_{self.id}_goal", "goal_response": f"on_{self.id}_goal_response",
-                "feedback": f"on_{self.id}_feedback", "result": f"on_{self.id}_result"}
+                "feedback": f"on_{self.id}_feedback", "result": f"on_{self.id}_result",
+                "done": f"_on_{self.id}_done"}
+
+    @property
+    def goal_active(self) -> str:
+        """The client's flag: true from send_<id>_goal() until the goal ends."""
+        return f"{self.id}_goal_active"
 
     @property
     def methods(self) -> tuple[str, ...]:
-        """Methods the base class defines for this action."""
-        return tuple(self.callbacks.values())
+        """Methods (and, for a client, the goal flag) the base class defines for this action."""
+        return tuple(self.callbacks.values()) + ((self.goal_active,) if self.role == "client" else ())
 
     @property
     def cpp_goal_handle(self) -> str:
@@ -241,7 +253,15 @@ class Node:
 
     @property
     def header_guard(self) -> str:
+        """ROS 2 style PKG__FILE_HPP_, ROS 1 style PKG_FILE_H."""
+        if self.ros == 1:
+            return f"{self.package}_{self.base_name}_H".upper()
         return f"{self.package}__{self.base_name}_HPP_".upper()
+
+    @property
+    def executable(self) -> str:
+        """What rosrun / ros2 run starts: ROS 1 Python scripts keep their .py."""
+        return f"{self.name}.py" if self.ros == 1 and self.is_python else self.name
 
     @property
     def endpoints(self) -> tuple:
@@ -271,6 +291,13 @@ class Node:
             t: names.snake_to_camel(t.package) + t.name if counts[t.name] > 1 or t.name in taken else t.name
             for t in self.interfaces
         }
+
+    @property
+    def message_variables(self) -> dict[Topic, str]:
+        """The starter code's variable for each publisher's message: msg, or <id>_msg for several."""
+        if len(self.publishers) == 1:
+            return {self.publishers[0]: "msg"}
+        return {topic: f"{topic.id}_msg" for topic in self.publishers}
 
     @property
     def driver_timer(self) -> Timer | None:
@@ -307,9 +334,7 @@ class Node:
         if self.description:
             return self.description if self.description.endswith(".") else self.description + "."
         parts = []
-
-        def listing(items: Iterable[str]) -> str:
-            return ", ".join(items)
+        listing = english_list
 
         if self.publishers:
             parts.append("publishes " + listing(t.topic for t in self.publishers))
@@ -325,7 +350,7 @@ class Node:
             parts.append("sends " + listing(a.name for a in self.action_clients) + " goals")
         if not parts:
             return f"The {self.name} node."
-        text = "; ".join(parts)
+        text = english_list(parts)
         return text[0].upper() + text[1:] + "."
 
     @property
@@ -408,7 +433,8 @@ class Package:
         """The nodes' dependencies, each once, sorted: what package.xml lists."""
         cpp = {dep for node in self.cpp_nodes for dep in node.dependencies}
         everything = {dep for node in self.nodes for dep in node.dependencies}
-        return tuple(Dependency(dep, dep in cpp) for dep in sorted(everything))
+        # catkin finds every dependency at build time (find_package COMPONENTS).
+        return tuple(Dependency(dep, dep in cpp or self.ros == 1) for dep in sorted(everything))
 
     @property
     def cpp_dependencies(self) -> tuple[str, ...]:
@@ -718,6 +744,10 @@ def _check_node_names(node: Node, label: str) -> None:
     methods = [(method, endpoint.label) for endpoint in node.endpoints for method in endpoint.methods]
     methods.extend((name, "a lifecycle callback") for name in names.LIFECYCLE_CALLBACKS)
     _check_unique(label, methods)
+    # ROS 1 nodes keep parameters in members named after them.
+    _check_unique(label, [*((e.member, e.label) for e in node.endpoints), *methods,
+                          *((name, "a member of the base class") for name in BASE_MEMBERS),
+                          *((p.name, f"parameter '{p.name}'") for p in node.parameters)])
 
 
 def parse_nodes(value: object, *, package: str, build_type: str, ros: int) -> tuple[Node, ...]:
@@ -795,6 +825,28 @@ QUICK_LISTS = {
     "node_timers": "timers",
     "node_parameters": "parameters",
 }
+
+def english_list(items: Iterable[str]) -> str:
+    """['a', 'b', 'c'] -> 'a, b and c'."""
+    items = list(items)
+    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
+
+
+def describe_nodes(answers: Mapping) -> str:
+    """A default package description from the nodes: what each does, or their names."""
+    try:
+        nodes = parse_nodes(answers.get("nodes"), package=answers.get("package_name") or "pkg",
+                            build_type=answers.get("build_type"),
+                            ros=ros_generation(answers.get("ros_distro")))
+    except ValueError:
+        return "ROS nodes"
+    if len(nodes) > 3:
+        return "Nodes " + english_list(node.name for node in nodes)
+    if any(node.description for node in nodes):
+        return " ".join(node.summary for node in nodes)
+    text = "; ".join(f"the {node.name} node {node.summary[0].lower()}{node.summary[1:-1]}" for node in nodes)
+    return text[0].upper() + text[1:]
+
 
 QUESTIONS = ("package_name", "description", "maintainer", "maintainer_email", "license",
              "copyright_holder", "ros_distro", "build_type", "nodes")

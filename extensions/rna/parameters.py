@@ -31,6 +31,12 @@ class ParameterType:
         return f"std::vector<{scalar}>" if self.is_array else scalar
 
     @property
+    def ros1_cpp_type(self) -> str:
+        """roscpp's parameter server keeps integers as int (XmlRpc)."""
+        scalar = "int" if self.scalar == "int" else _CPP_SCALARS[self.scalar]
+        return f"std::vector<{scalar}>" if self.is_array else scalar
+
+    @property
     def is_numeric(self) -> bool:
         return self.scalar in ("int", "double") and not self.is_array
 
@@ -128,6 +134,13 @@ class Parameter:
 
     @property
     def cpp_default(self) -> str:
+        return cpp_literal(self.default, self.type)
+
+    @property
+    def ros1_cpp_default(self) -> str:
+        if self.type.is_array:
+            items = ", ".join(cpp_literal(item, ParameterType(self.type.scalar)) for item in self.default)
+            return f"{self.type.ros1_cpp_type}{{{items}}}"
         return cpp_literal(self.default, self.type)
 
     @property

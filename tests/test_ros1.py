@@ -1,0 +1,173 @@
+"""ros1 tier: generated catkin packages built with catkin_make and run on real ROS 1.
+
+ROS 1 comes from Debian's own packages (tests/support/ros1.py installs them when
+missing and run as root). The 12 node pairs of ROS Node Automator's plan: C++ and
+Python senders and receivers for topics, services and actionlib, every combination,
+each run against a private master inside its own network namespace.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+import pytest
+
+from conftest import generate, unavailable
+from support import ros1 as ros1_support
+from support.processes import NodeProcess, assert_clean_exit, started
+from test_generate import VARIANTS
+
+pytestmark = pytest.mark.ros1
+
+SERVER_PARAMETERS = [
+    {"name": "rate", "default": 1.5, "description": "Work rate in Hz"},
+    "label:string=plain",
+    "limits:int[]=[1, 2]",
+    "verbose=false",
+]
+
+
+def _node(role: str, language: str, **endpoints) -> dict:
+    return {"name": f"{'cpp' if language == 'cpp' else 'py'}_{role}", "language": language, **endpoints}
+
+
+PAIRS_PACKAGE = {
+    "package_name": "pairs",
+    "ros_distro": "noetic",
+    "description": "Senders and receivers for every pair of languages",
+    "nodes": [
+        node
+        for language in ("cpp", "python")
+        for node in (
+            _node("talker", language, publishers=["chatter:std_msgs/msg/String"], timers=[0.2]),
+            _node("listener", language, subscribers=["chatter:std_msgs/msg/String"]),
+            _node("server", language, service_servers=["reset:std_srvs/srv/Trigger"],
+                  parameters=SERVER_PARAMETERS),
+            _node("client", language, service_clients=["reset:std_srvs/srv/Trigger"], timers=[0.2]),
+            _node("action_server", language, action_servers=["count:actionlib/action/Test"]),
+            _node("action_client", language, action_clients=["count:actionlib/action/Test"], timers=[0.2]),
+        )
+    ],
+}
+
+# (sender, receiver, what the receiving side prints for each exchange)
+TOPIC = [r'I heard: "Hello World: \d+"']
+SERVICE = ["reset answered"]
+ACTION = ["Feedback on the count goal", "The count goal succeeded"]
+PAIRS = {
+    f"{kind}-{sender_language}-to-{receiver_language}": (
+        f"{sender_language}_{sender}", f"{receiver_language}_{receiver}", expected)
+    for kind, sender, receiver, expected in (
+        ("topic", "talker", "listener", TOPIC),
+        ("service", "server", "client", SERVICE),
+        ("action", "action_server", "action_client", ACTION),
+    )
+    for sender_language in ("cpp", "py")
+    for receiver_language in ("cpp", "py")
+}
+
+
+@pytest.fixture(scope="session")
+def ros1():
+    try:
+        return ros1_support.ensure_environment(install=os.geteuid() == 0)
+    except ros1_support.Ros1Unavailable as error:
+        unavailable(f"ROS 1 from Debian's packages is not available: {error}")
+
+
+@dataclass
+class CatkinWorkspace:
+    path: Path
+    ros1: ros1_support.Ros1Environment
+    logs: Path
+
+    def executable(self, package: str, node: str) -> Path:
+        name = f"{node}.py" if node.startswith("py_") else node
+        return self.path / "devel" / "lib" / package / name
+
+    @contextlib.contextmanager
+    def network(self, name: str):
+        """A private namespace with a master in it: (argv prefix, environment)."""
+        with ros1_support.netns_prefix() as prefix:
+            env = self.ros1.workspace_env(self.path / "devel", self.ros1.env(
+                ros1_support.free_port(), self.logs / name / "ros_home"))
+            with ros1_support.master(env, self.logs / name / "master.log", prefix):
+                yield prefix, env
+
+    def node(self, prefix, env, package: str, node: str, *args: str, log: Path) -> NodeProcess:
+        return NodeProcess([*prefix, str(self.executable(package, node)), *args], env=env, log_path=log)
+
+
+@pytest.fixture(scope="session")
+def catkin_ws(ros1, template_dir, tmp_path_factory) -> CatkinWorkspace:
+    """The pairs package and a small launch-file package, generated and built once."""
+    path = tmp_path_factory.mktemp("catkin_ws")
+    generate(template_dir, path / "src" / "pairs", PAIRS_PACKAGE)
+    generate(template_dir, path / "src" / "bringup", LAUNCHED_PACKAGE)
+    # Every endpoint kind, parameter type and both languages: compiled with -Werror.
+    generate(template_dir, path / "src" / "everything", {"package_name": "everything", **VARIANTS["ros1"]})
+    config = path / "src" / "bringup" / "bringup" / "config" / "talker.yaml"
+    config.write_text(config.read_text().replace("rate: 1.5", "rate: 2.5"))  # tuned by a user
+    workspace = CatkinWorkspace(path, ros1, tmp_path_factory.mktemp("ros1_logs"))
+    ros1.catkin_make(path, ros1.env(ros1_support.free_port(), workspace.logs / "build_home"),
+                     "-DCMAKE_CXX_FLAGS=-Werror")
+    return workspace
+
+
+@pytest.mark.parametrize("pair", sorted(PAIRS))
+def test_generated_pair_exchanges(catkin_ws, pair):
+    sender, receiver, expected = PAIRS[pair]
+    logs = catkin_ws.logs / pair
+    with catkin_ws.network(pair) as (prefix, env):
+        receiving = catkin_ws.node(prefix, env, "pairs", receiver, log=logs / f"{receiver}.log")
+        sending = catkin_ws.node(prefix, env, "pairs", sender, log=logs / f"{sender}.log")
+        with started(receiving, sending):
+            for pattern in expected:
+                receiving.wait_for(pattern, timeout=30)
+            for process in (receiving, sending):
+                assert_clean_exit(process, process.interrupt())
+
+
+def test_parameters_come_from_the_command_line(catkin_ws):
+    with catkin_ws.network("params_cli") as (prefix, env):
+        for server in ("cpp_server", "py_server"):
+            node = catkin_ws.node(prefix, env, "pairs", server, "_rate:=7.0", "_label:=from_cli",
+                                  log=catkin_ws.logs / "params_cli" / f"{server}.log")
+            with started(node):
+                node.wait_for(r"rate: 7(\.0)?\b")
+                node.wait_for("label: from_cli")
+                node.wait_for(r"verbose: (false|False)")
+                assert_clean_exit(node, node.interrupt())
+
+
+def test_generated_packages_pass_catkin_lint(catkin_ws):
+    for package in ("pairs/pairs", "bringup/bringup", "everything/everything"):
+        returncode, output = catkin_ws.ros1.catkin_lint(
+            catkin_ws.path / "src" / package, catkin_ws.ros1.env(ros1_support.free_port(), catkin_ws.logs))
+        assert returncode == 0, output
+        assert "found 0 problems" in output, output
+
+
+LAUNCHED_PACKAGE = {
+    "package_name": "bringup",
+    "ros_distro": "noetic",
+    "description": "Talker in C++ and listener in Python, started by one launch file",
+    "nodes": [
+        {"name": "talker", "language": "cpp", "publishers": ["chatter:std_msgs/msg/String"], "timers": [0.2],
+         "parameters": [{"name": "rate", "default": 1.5, "description": "Work rate in Hz"}]},
+        {"name": "listener", "language": "python", "subscribers": ["chatter:std_msgs/msg/String"]},
+    ],
+}
+
+
+def test_launch_file_starts_every_node_with_its_config(catkin_ws):
+    with catkin_ws.network("roslaunch") as (prefix, env):
+        launch = NodeProcess([*prefix, "roslaunch", "bringup", "bringup.launch"], env=env,
+                             log_path=catkin_ws.logs / "roslaunch" / "roslaunch.log")
+        with started(launch):
+            launch.wait_for(r"rate: 2\.5", timeout=30)  # the value tuned in config/talker.yaml
+            launch.wait_for(r'I heard: "Hello World: \d+"', timeout=30)
+            assert_clean_exit(launch, launch.interrupt(timeout=30))
