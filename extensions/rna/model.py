@@ -259,6 +259,20 @@ class Node:
         return f"{self.package}__{self.base_name}_HPP_".upper()
 
     @property
+    def user_file(self) -> str:
+        """The user-owned source file, relative to the package folder."""
+        if self.is_cpp:
+            return f"src/{self.name}.cpp"
+        return f"scripts/{self.name}.py" if self.ros == 1 else f"{self.package}/{self.name}.py"
+
+    @property
+    def base_file(self) -> str:
+        """The template-owned base class file, relative to the package folder."""
+        if self.is_cpp:
+            return f"include/{self.package}/{self.base_name}.{'h' if self.ros == 1 else 'hpp'}"
+        return f"src/{self.package}/{self.base_name}.py" if self.ros == 1 else f"{self.package}/{self.base_name}.py"
+
+    @property
     def executable(self) -> str:
         """What rosrun / ros2 run starts: ROS 1 Python scripts keep their .py."""
         return f"{self.name}.py" if self.ros == 1 and self.is_python else self.name
@@ -412,6 +426,15 @@ class Package:
     @property
     def ros(self) -> int:
         return 1 if self.ros_distro in ROS1_DISTROS else 2
+
+    @property
+    def launch_file(self) -> str:
+        return f"launch/{self.name}.launch" + ("" if self.ros == 1 else ".xml")
+
+    @property
+    def user_files(self) -> tuple[str, ...]:
+        """Files the user owns, relative to the destination: created once, never rewritten."""
+        return tuple(f"{self.name}/{node.user_file}" for node in self.nodes)
 
     @property
     def cpp_nodes(self) -> tuple[Node, ...]:
