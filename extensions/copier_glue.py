@@ -8,6 +8,7 @@ a plain `import rna` would hand the new version the old version's modules.
 
 from __future__ import annotations
 
+import functools
 import getpass
 import hashlib
 import importlib.util
@@ -58,6 +59,24 @@ def describe_nodes(context) -> str:
     return rna.model.describe_nodes(context)
 
 
+@pass_context
+def found_interfaces(context, kind: str | None = None) -> str:
+    """A help suffix listing the interfaces already on disk around the destination."""
+    destination = (context.get("_copier_conf") or {}).get("dst_path")
+    if destination is None:
+        return ""
+    found = [name for name in _found(str(destination)) if kind is None or f"/{kind}/" in name]
+    if not found:
+        return ""
+    shown = ", ".join(found[:12]) + (f" and {len(found) - 12} more" if len(found) > 12 else "")
+    return f" (found in your workspace: {shown})"
+
+
+@functools.cache
+def _found(destination: str) -> tuple[str, ...]:
+    return tuple(rna.workspace.find_interfaces(Path(destination)))
+
+
 def git_config(key: str) -> str:
     """The user's git setting (user.name, user.email) as a default answer, or ""."""
     try:
@@ -74,13 +93,15 @@ class RnaExtension(Extension):
     def __init__(self, environment):
         super().__init__(environment)
         environment.globals.update(answer_error=answer_error, describe_nodes=describe_nodes,
-                                   git_config=git_config, login_name=getpass.getuser)
+                                   found_interfaces=found_interfaces, git_config=git_config,
+                                   login_name=getpass.getuser)
         code = rna.code
         environment.filters.update(
             package_name_from_folder=rna.names.package_name_from_folder,
             split_list=rna.split_list,
             python_literal=rna.parameters.python_literal,
             python_text=code.python_text,
+            with_article=code.with_article,
             python_base_imports=code.python_base_imports,
             python_node_imports=code.python_node_imports,
             python_descriptor=code.python_descriptor,

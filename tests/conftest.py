@@ -4,6 +4,7 @@ Tiers (pytest -m):
   (no mark)  fast: extension functions, questions, generated files checked statically
   ros        ROS 2 Kilted from PyPI wheels: colcon builds, nodes run in separate processes
   ros1       ROS 1 from Debian packages: catkin builds, node pairs run against a master
+  update     copier update flows and merge-safety scenarios (copier and git only)
 
 Outside CI a ROS tier that cannot set itself up is skipped with the reason; with
 CI=true it fails instead, so a green CI run always means every tier ran.
@@ -38,6 +39,7 @@ FIXED_ANSWERS = {
 def pytest_configure(config):
     config.addinivalue_line("markers", "ros: builds and runs generated ROS 2 packages (PyPI wheels)")
     config.addinivalue_line("markers", "ros1: builds and runs generated ROS 1 packages (Debian)")
+    config.addinivalue_line("markers", "update: copier update flows and merge-safety scenarios")
 
 
 def in_ci() -> bool:

@@ -145,7 +145,8 @@ def test_variant_generates_a_consistent_package(make_package, variant):
             assert (package / "include" / "robot" / f"{name}_base.h").is_file()
         cmake = (package / "CMakeLists.txt").read_text()
         for name in cpp_nodes:
-            assert f"add_executable({name} src/{name}.cpp)" in cmake
+            assert f"add_executable(${{PROJECT_NAME}}_{name} src/{name}.cpp)" in cmake
+            assert f"PROPERTIES OUTPUT_NAME {name} PREFIX" in cmake
         for name in python_nodes:
             assert f"  scripts/{name}.py\n" in cmake
         assert ("catkin_python_setup()" in cmake) == bool(python_nodes)

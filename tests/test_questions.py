@@ -133,3 +133,33 @@ def test_one_node_prompt_by_prompt_without_yaml(terminal, tmp_path):
     assert "def on_scan(self, msg):" in base
     assert "self.declare_parameter('max_speed', 0.5)" in base
     assert shutil.which("git")
+
+
+def test_interfaces_in_the_workspace_are_offered(template_dir, tmp_path):
+    """The type questions list the .msg/.srv/.action files found around the destination."""
+    existing = tmp_path / "ws" / "src" / "nav_interfaces"
+    (existing / "msg").mkdir(parents=True)
+    (existing / "package.xml").write_text("<package format='3'><name>nav_interfaces</name></package>")
+    (existing / "msg" / "Goal.msg").write_text("float64 x\n")
+    env = {**os.environ, "TERM": "xterm", "PROMPT_TOOLKIT_NO_CPR": "1"}
+    child = pexpect.spawn(COPIER, ["copy", "--trust", "--vcs-ref=HEAD", str(template_dir),
+                                   str(tmp_path / "ws" / "src" / "planner")],
+                          env=env, encoding="utf-8", timeout=30, dimensions=(50, 250))
+    child.logfile_read = (tmp_path / "terminal.log").open("w")
+    try:
+        for prompt in ("Package name", "full name", "e-mail", "License", "Copyright holder", "ROS distribution",
+                       "ament_python holds"):
+            answer(child, prompt, "")
+        answer(child, "describe the package's nodes", DOWN)
+        answer(child, "Node name", "")
+        child.expect("Topics it publishes")
+        child.expect(r"found in your workspace: nav_interfaces/msg/Goal")
+        child.send("goal:nav_interfaces/msg/Goal\r")
+        for prompt in ("subscribes to", "Services it offers", "Services it calls", "Actions it executes",
+                       "Actions it sends", "Timers", "Parameters", "One sentence"):
+            answer(child, prompt, "")
+        child.expect(pexpect.EOF, timeout=60)
+    finally:
+        child.close(force=True)
+    assert child.exitstatus == 0, (tmp_path / "terminal.log").read_text()
+    assert answers_of(tmp_path / "ws" / "src" / "planner")["nodes"][0]["publishers"] == ["goal:nav_interfaces/msg/Goal"]

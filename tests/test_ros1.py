@@ -19,6 +19,7 @@ from conftest import generate, unavailable
 from support import ros1 as ros1_support
 from support.processes import NodeProcess, assert_clean_exit, started
 from test_generate import VARIANTS
+from test_interfaces import TRACKER_INTERFACES
 
 pytestmark = pytest.mark.ros1
 
@@ -109,6 +110,8 @@ def catkin_ws(ros1, template_dir, tmp_path_factory) -> CatkinWorkspace:
     generate(template_dir, path / "src" / "bringup", LAUNCHED_PACKAGE)
     # Every endpoint kind, parameter type and both languages: compiled with -Werror.
     generate(template_dir, path / "src" / "everything", {"package_name": "everything", **VARIANTS["ros1"]})
+    generate(template_dir, path / "src" / "tracker", TRACKER)
+    generate(template_dir, path / "src" / "tracker_same", TRACKER_SAME)
     config = path / "src" / "bringup" / "bringup" / "config" / "talker.yaml"
     config.write_text(config.read_text().replace("rate: 1.5", "rate: 2.5"))  # tuned by a user
     workspace = CatkinWorkspace(path, ros1, tmp_path_factory.mktemp("ros1_logs"))
@@ -131,6 +134,23 @@ def test_generated_pair_exchanges(catkin_ws, pair):
                 assert_clean_exit(process, process.interrupt())
 
 
+@pytest.mark.parametrize("package", ["tracker", "tracker_same"])
+@pytest.mark.parametrize(("sender", "receiver"), [("cpp_detector", "py_mover"), ("py_detector", "cpp_mover")])
+def test_custom_interfaces_between_languages(catkin_ws, package, sender, receiver):
+    name = f"{package}-{sender}-{receiver}"
+    with catkin_ws.network(name) as (prefix, env):
+        receiving = catkin_ws.node(prefix, env, package, receiver, log=catkin_ws.logs / name / "receiver.log")
+        sending = catkin_ws.node(prefix, env, package, sender, log=catkin_ws.logs / name / "sender.log")
+        with started(receiving, sending):
+            receiving.wait_for("Received a message on target", timeout=30)
+            receiving.wait_for("Answering a set_target request")
+            sending.wait_for("set_target answered")
+            sending.wait_for("Feedback on the approach goal")
+            sending.wait_for("The approach goal succeeded")
+            for process in (receiving, sending):
+                assert_clean_exit(process, process.interrupt())
+
+
 def test_parameters_come_from_the_command_line(catkin_ws):
     with catkin_ws.network("params_cli") as (prefix, env):
         for server in ("cpp_server", "py_server"):
@@ -144,12 +164,35 @@ def test_parameters_come_from_the_command_line(catkin_ws):
 
 
 def test_generated_packages_pass_catkin_lint(catkin_ws):
-    for package in ("pairs/pairs", "bringup/bringup", "everything/everything"):
+    for package in ("pairs/pairs", "bringup/bringup", "everything/everything", "tracker/tracker",
+                    "tracker/tracker_interfaces", "tracker_same/tracker_same"):
         returncode, output = catkin_ws.ros1.catkin_lint(
             catkin_ws.path / "src" / package, catkin_ws.ros1.env(ros1_support.free_port(), catkin_ws.logs))
         assert returncode == 0, output
         assert "found 0 problems" in output, output
 
+
+def _ros1_tracker_nodes() -> list[dict]:
+    """Senders and receivers of the custom message, service and action, in both languages."""
+    nodes = []
+    for language in ("cpp", "python"):
+        short = "cpp" if language == "cpp" else "py"
+        nodes.append({"name": f"{short}_detector", "language": language, "timers": [0.2],
+                      "publishers": ["target:Target"], "service_clients": ["set_target:SetTarget"],
+                      "action_clients": ["approach:Approach"]})
+        nodes.append({"name": f"{short}_mover", "language": language, "subscribers": ["target:Target"],
+                      "service_servers": ["set_target:SetTarget"], "action_servers": ["approach:Approach"]})
+    return nodes
+
+
+# ROS 1 has no default values in interface definitions.
+ROS1_INTERFACES = {**TRACKER_INTERFACES, "messages": [
+    {**TRACKER_INTERFACES["messages"][0], "fields": ["float64 x", "float64 y", "string frame_id",
+                                                     "int32 MAX_TARGETS=5", "geometry_msgs/Point position"]},
+    TRACKER_INTERFACES["messages"][1]]}
+TRACKER = {"package_name": "tracker", "ros_distro": "noetic", "description": "Custom interfaces, used from C++ and Python",
+           "interfaces": ROS1_INTERFACES, "nodes": _ros1_tracker_nodes()}
+TRACKER_SAME = {**TRACKER, "package_name": "tracker_same", "interfaces_location": "package"}
 
 LAUNCHED_PACKAGE = {
     "package_name": "bringup",

@@ -20,6 +20,7 @@ from conftest import generate, unavailable
 from support import ros2 as ros2_support
 from support.processes import NodeProcess, assert_clean_exit, started
 from test_generate import VARIANTS
+from test_interfaces import TRACKER_INTERFACES, TRACKER_NODES
 
 pytestmark = pytest.mark.ros
 
@@ -58,6 +59,16 @@ CMAKE_PYTHON = {
          "timers": ["tick:0.2"]},
     ],
 }
+
+
+# Custom interfaces: a separate tracker_interfaces package, and the same ones built by
+# an ament_cmake package for its own (Python) nodes.
+TRACKER = {"package_name": "tracker", "build_type": "ament_python", "interfaces": TRACKER_INTERFACES,
+           "nodes": TRACKER_NODES}
+TRACKER_SAME = {"package_name": "tracker_same", "build_type": "ament_cmake", "interfaces_location": "package",
+                "interfaces": TRACKER_INTERFACES,
+                "nodes": [{**node, "language": "python"} for node in TRACKER_NODES]}
+TRACKER_SAME["nodes"][1]["subscribers"] = ["target:Target"]
 
 
 @pytest.fixture(scope="session")
@@ -100,6 +111,8 @@ def workspace(ros2, template_dir, tmp_path_factory) -> Workspace:
     generate(template_dir, path / "src" / "rna_demo")  # the defaults
     generate(template_dir, path / "src" / "robot_services", SERVICES)
     generate(template_dir, path / "src" / "robot_beacons", CMAKE_PYTHON)
+    generate(template_dir, path / "src" / "tracker", TRACKER)
+    generate(template_dir, path / "src" / "tracker_same", TRACKER_SAME)
     # A user tunes a parameter in the generated config file.
     config = path / "src" / "robot_services" / "robot_services" / "config" / "server.yaml"
     config.write_text(config.read_text().replace("rate: 1.5", "rate: 2.5"))
@@ -145,7 +158,7 @@ def test_service_client_gets_the_servers_responses(workspace):
         client.wait_for(r"reset answered: .*Trigger_Response\(success=False")
         client.wait_for(r"enable answered: .*SetBool_Response")
         server.wait_for("Answering a reset request")
-        server.wait_for("Answering a enable request")
+        server.wait_for("Answering an enable request")
         stop_all(client, server)
 
 
@@ -197,6 +210,20 @@ def test_lifecycle_node_publishes_once_activated(workspace):
         listener.wait_for(r'I heard: "Hello World: \d+"')
         workspace.probe("lifecycle", "beacon", "deactivate", "cleanup")
         stop_all(beacon, listener)
+
+
+@pytest.mark.parametrize(("package", "interfaces"), [("tracker", "tracker_interfaces"),
+                                                     ("tracker_same", "tracker_same")])
+def test_custom_message_service_and_action_between_nodes(workspace, package, interfaces):
+    with started(workspace.node(package, "mover", log=f"{package}_mover"),
+                 workspace.node(package, "detector", log=f"{package}_detector")) as (mover, detector):
+        mover.wait_for("Received a message on target")
+        mover.wait_for("Answering a set_target request")
+        detector.wait_for(rf"set_target answered: {interfaces}\.srv\.SetTarget_Response\(accepted=False")
+        mover.wait_for("Executing an approach goal")
+        detector.wait_for("Feedback on the approach goal")
+        detector.wait_for("The approach goal succeeded")
+        stop_all(detector, mover)
 
 
 def test_ament_cmake_python_node_runs(workspace):

@@ -255,7 +255,11 @@ _CMAKE_TARGETS = {
 
 def cmake_targets(node) -> list[str]:
     """What a C++ node's target links: the client library targets, ${<pkg>_TARGETS} otherwise."""
-    return [_CMAKE_TARGETS.get(dep, f"${{{dep}_TARGETS}}") for dep in node.dependencies]
+    return [
+        # The package's own interfaces: rosidl_get_typesupport_target() names them.
+        '"${cpp_typesupport_target}"' if dep == node.package else _CMAKE_TARGETS.get(dep, f"${{{dep}_TARGETS}}")
+        for dep in node.dependencies
+    ]
 
 
 # --------------------------------------------------------------------------- ROS 1 nodes
@@ -340,3 +344,8 @@ def python_text(text: str, column: int, indent: int, width: int = 99) -> str:
         return literal
     chunks = textwrap.wrap(text, width - indent - 4, drop_whitespace=False)
     return "(\n" + "\n".join(" " * indent + python_literal(chunk) for chunk in chunks) + ")"
+
+
+def with_article(word: str) -> str:
+    """'approach' -> 'an approach', 'reset' -> 'a reset' (for log messages and docs)."""
+    return ("an " if word.lstrip("/~")[:1].lower() in "aeiou" else "a ") + word

@@ -19,6 +19,7 @@ from functools import cached_property
 import yaml
 
 from . import names
+from .definitions import Definition, parse_definitions
 from .interfaces import InterfaceType, parse_interface
 from .licenses import License, get_license
 from .parameters import Parameter, ParameterType, coerce_default, infer_type, parse_type
@@ -422,6 +423,38 @@ class Package:
     ros_distro: str
     build_type: str
     nodes: tuple[Node, ...] = field(default_factory=tuple)
+    definitions: tuple[Definition, ...] = ()
+    interfaces_location: str = "separate"  # or "package": this package builds them
+
+    # --- interfaces this package defines
+
+    @property
+    def interfaces_home(self) -> str:
+        """The package folder the .msg/.srv/.action files go to, or "" without any."""
+        if not self.definitions:
+            return ""
+        return self.name if self.interfaces_location == "package" else f"{self.name}_interfaces"
+
+    @property
+    def interfaces_package(self) -> str:
+        """The separate interfaces package to generate beside this one, or ""."""
+        return self.interfaces_home if self.interfaces_home != self.name else ""
+
+    @property
+    def builds_interfaces(self) -> bool:
+        """This package itself runs the interface generators."""
+        return bool(self.definitions) and self.interfaces_home == self.name
+
+    def definitions_of(self, kind: str) -> tuple[Definition, ...]:
+        return tuple(d for d in self.definitions if d.kind == kind)
+
+    @property
+    def interface_dependencies(self) -> tuple[str, ...]:
+        """Packages the generated interfaces need, sorted."""
+        deps = {package for definition in self.definitions for package in definition.packages}
+        if self.definitions_of("action"):
+            deps |= {"actionlib_msgs", "std_msgs"} if self.ros == 1 else {"action_msgs"}
+        return tuple(sorted(deps))
 
     @property
     def ros(self) -> int:
@@ -456,6 +489,13 @@ class Package:
         """The nodes' dependencies, each once, sorted: what package.xml lists."""
         cpp = {dep for node in self.cpp_nodes for dep in node.dependencies}
         everything = {dep for node in self.nodes for dep in node.dependencies}
+        if self.builds_interfaces:
+            cpp |= set(self.interface_dependencies)
+            everything |= set(self.interface_dependencies)
+            if self.ros == 1:
+                # One list serves find_package() and catkin_package(): both tools are <depend>s.
+                everything |= {"message_generation", "message_runtime"}
+        everything.discard(self.name)  # its own interfaces
         # catkin finds every dependency at build time (find_package COMPONENTS).
         return tuple(Dependency(dep, dep in cpp or self.ros == 1) for dep in sorted(everything))
 
@@ -477,6 +517,20 @@ class Package:
 
 
 # --------------------------------------------------------------------------- parsing
+
+
+@dataclass(frozen=True)
+class Types:
+    """How endpoint types are read: the ROS generation, and this package's own interfaces."""
+
+    ros: int = 2
+    own: Mapping[tuple[str, str], InterfaceType] = field(default_factory=dict)
+
+    def parse(self, text: object, kind: str) -> InterfaceType:
+        """`pkg/kind/Name`, `pkg/Name`, or the bare `Name` of an interface defined here."""
+        if isinstance(text, str) and (kind, text.strip()) in self.own:
+            return self.own[(kind, text.strip())]
+        return parse_interface(text, kind, self.ros)
 
 
 def split_list(text: object) -> list[str]:
@@ -552,7 +606,7 @@ def _parse_id(given: object, ros_name: str, what: str) -> str:
     return names.identifier_from_name(ros_name)
 
 
-def _parse_topic(item: object, role: str, ros: int) -> Topic:
+def _parse_topic(item: object, role: str, types: Types) -> Topic:
     if isinstance(item, str):
         parts = _split_short(item, 3)
         if len(parts) < 2:
@@ -566,11 +620,11 @@ def _parse_topic(item: object, role: str, ros: int) -> Topic:
     error = names.topic_name_error(topic, "topic")
     if error:
         raise ValueError(f"{role}: {error}")
-    interface = parse_interface(item.get("type"), "msg", ros)
+    interface = types.parse(item.get("type"), "msg")
     return Topic(role, topic, interface, _parse_qos(item.get("qos"), what), _parse_id(item.get("id"), topic, what))
 
 
-def _parse_service_or_action(item: object, cls: type, kind: str, role: str, ros: int):
+def _parse_service_or_action(item: object, cls: type, kind: str, role: str, types: Types):
     what = f"{'service' if kind == 'srv' else 'action'} {role}"
     example = "reset:std_srvs/srv/Trigger" if kind == "srv" else "fibonacci:test_msgs/action/Fibonacci"
     if isinstance(item, str):
@@ -585,7 +639,7 @@ def _parse_service_or_action(item: object, cls: type, kind: str, role: str, ros:
     error = names.topic_name_error(name, "service" if kind == "srv" else "action")
     if error:
         raise ValueError(f"{what}: {error}")
-    interface = parse_interface(item.get("type"), kind, ros)
+    interface = types.parse(item.get("type"), kind)
     return cls(role, name, interface, _parse_id(item.get("id"), name, f"{what} '{name}'"))
 
 
@@ -698,7 +752,7 @@ _NODE_KEYS = ("name", "language", "description", "lifecycle", "component", "publ
               "parameters")
 
 
-def parse_node(item: object, *, package: str, build_type: str, ros: int) -> Node:
+def parse_node(item: object, *, package: str, build_type: str, types: Types) -> Node:
     """One entry of `nodes`; raises ValueError with a message that starts with the node."""
     if isinstance(item, str):
         item = {"name": item}
@@ -709,6 +763,7 @@ def parse_node(item: object, *, package: str, build_type: str, ros: int) -> Node
     if error:
         raise ValueError(error)
     label = f"node '{name}'"
+    ros = types.ros
     try:
         _check_keys(item, _NODE_KEYS, "node")
         default_language = "python" if build_type == "ament_python" else "cpp"
@@ -737,15 +792,15 @@ def parse_node(item: object, *, package: str, build_type: str, ros: int) -> Node
             description=description.strip(),
             lifecycle=flags["lifecycle"],
             component=flags["component"],
-            publishers=tuple(_parse_topic(x, "publisher", ros) for x in _as_list(item.get("publishers"), "publishers")),
-            subscribers=tuple(_parse_topic(x, "subscriber", ros) for x in _as_list(item.get("subscribers"), "subscribers")),
-            service_servers=tuple(_parse_service_or_action(x, Service, "srv", "server", ros)
+            publishers=tuple(_parse_topic(x, "publisher", types) for x in _as_list(item.get("publishers"), "publishers")),
+            subscribers=tuple(_parse_topic(x, "subscriber", types) for x in _as_list(item.get("subscribers"), "subscribers")),
+            service_servers=tuple(_parse_service_or_action(x, Service, "srv", "server", types)
                                   for x in _as_list(item.get("service_servers"), "service_servers")),
-            service_clients=tuple(_parse_service_or_action(x, Service, "srv", "client", ros)
+            service_clients=tuple(_parse_service_or_action(x, Service, "srv", "client", types)
                                   for x in _as_list(item.get("service_clients"), "service_clients")),
-            action_servers=tuple(_parse_service_or_action(x, Action, "action", "server", ros)
+            action_servers=tuple(_parse_service_or_action(x, Action, "action", "server", types)
                                  for x in _as_list(item.get("action_servers"), "action_servers")),
-            action_clients=tuple(_parse_service_or_action(x, Action, "action", "client", ros)
+            action_clients=tuple(_parse_service_or_action(x, Action, "action", "client", types)
                                  for x in _as_list(item.get("action_clients"), "action_clients")),
             timers=tuple(_parse_timer(x) for x in _as_list(item.get("timers"), "timers")),
             parameters=tuple(_parse_parameter(x) for x in _as_list(item.get("parameters"), "parameters")),
@@ -773,7 +828,7 @@ def _check_node_names(node: Node, label: str) -> None:
                           *((p.name, f"parameter '{p.name}'") for p in node.parameters)])
 
 
-def parse_nodes(value: object, *, package: str, build_type: str, ros: int) -> tuple[Node, ...]:
+def parse_nodes(value: object, *, package: str, build_type: str, types: Types) -> tuple[Node, ...]:
     if isinstance(value, str):
         try:
             value = yaml.safe_load(value)
@@ -781,7 +836,7 @@ def parse_nodes(value: object, *, package: str, build_type: str, ros: int) -> tu
             raise ValueError(f"not valid YAML ({str(error).splitlines()[0]})") from None
     if not isinstance(value, list) or not value:
         raise ValueError("give a list with at least one node")
-    nodes = tuple(parse_node(item, package=package, build_type=build_type, ros=ros) for item in value)
+    nodes = tuple(parse_node(item, package=package, build_type=build_type, types=types) for item in value)
     _check_unique("nodes", ((node.name, f"node '{node.name}'") for node in nodes))
     return nodes
 
@@ -800,6 +855,21 @@ def question_error(question: str, answers: Mapping) -> str | None:
     except ValueError as error:
         return str(error)
     return None
+
+
+def interfaces_package_name(answers: Mapping) -> str:
+    """Where the package's own interfaces live: <package>_interfaces, or the package itself."""
+    package = answers.get("package_name") or "pkg"
+    return package if answers.get("interfaces_location") == "package" else f"{package}_interfaces"
+
+
+def parse_types(answers: Mapping) -> tuple[tuple[Definition, ...], Types]:
+    """The interfaces the answers define, and how node answers read types with them."""
+    ros = ros_generation(answers.get("ros_distro"))
+    home = interfaces_package_name(answers)
+    definitions = parse_definitions(answers.get("interfaces"), package=home, ros=ros)
+    own = {(d.kind, d.name): InterfaceType(home, d.kind, d.name, ros) for d in definitions}
+    return definitions, Types(ros, own)
 
 
 def _check_question(question: str, answers: Mapping) -> None:
@@ -823,9 +893,16 @@ def _check_question(question: str, answers: Mapping) -> None:
     elif question == "build_type":
         if value not in BUILD_TYPES[ros]:
             raise ValueError(f"'{value}' is not one of {', '.join(BUILD_TYPES[ros])} for ROS {ros}")
+    elif question == "interfaces":
+        parse_types(answers)
+    elif question == "interfaces_location":
+        if value not in (None, "separate", "package"):
+            raise ValueError(f"'{value}' is not separate or package")
+        if value == "package" and answers.get("build_type") == "ament_python":
+            raise ValueError("an ament_python package cannot build interfaces: keep them separate")
     elif question == "nodes":
         parse_nodes(value, package=answers.get("package_name") or "pkg",
-                    build_type=answers.get("build_type"), ros=ros)
+                    build_type=answers.get("build_type"), types=parse_types(answers)[1])
     elif question == "node_name":
         error = names.node_name_error(value)
         if error:
@@ -833,8 +910,9 @@ def _check_question(question: str, answers: Mapping) -> None:
     elif question in QUICK_LISTS:
         # The one-node quick questions take comma-separated short forms.
         key = QUICK_LISTS[question]
-        parse_node({"name": "node", "language": answers.get("node_language"), key: value},
-                   package="pkg", build_type=answers.get("build_type"), ros=ros)
+        language = "python" if answers.get("build_type") == "ament_python" else answers.get("node_language")
+        parse_node({"name": "node", "language": language, key: value},
+                   package="pkg", build_type=answers.get("build_type"), types=Types(ros))
 
 
 # Quick one-node questions and the `nodes` key each one fills.
@@ -859,8 +937,7 @@ def describe_nodes(answers: Mapping) -> str:
     """A default package description from the nodes: what each does, or their names."""
     try:
         nodes = parse_nodes(answers.get("nodes"), package=answers.get("package_name") or "pkg",
-                            build_type=answers.get("build_type"),
-                            ros=ros_generation(answers.get("ros_distro")))
+                            build_type=answers.get("build_type"), types=parse_types(answers)[1])
     except ValueError:
         return "ROS nodes"
     if len(nodes) > 3:
@@ -872,7 +949,7 @@ def describe_nodes(answers: Mapping) -> str:
 
 
 QUESTIONS = ("package_name", "description", "maintainer", "maintainer_email", "license",
-             "copyright_holder", "ros_distro", "build_type", "nodes")
+             "copyright_holder", "ros_distro", "build_type", "interfaces", "interfaces_location", "nodes")
 
 
 def build_package(answers: Mapping) -> Package:
@@ -882,7 +959,7 @@ def build_package(answers: Mapping) -> Package:
             _check_question(question, answers)
         except ValueError as error:
             raise AnswerError(question, str(error)) from None
-    ros = ros_generation(answers["ros_distro"])
+    definitions, types = parse_types(answers)
     year = answers.get("copyright_year")
     if isinstance(year, bool) or not isinstance(year, int) or not 1970 <= year <= 9999:
         raise AnswerError("copyright_year", f"'{year}' is not a year")
@@ -897,5 +974,7 @@ def build_package(answers: Mapping) -> Package:
         ros_distro=answers["ros_distro"],
         build_type=answers["build_type"],
         nodes=parse_nodes(answers["nodes"], package=answers["package_name"],
-                          build_type=answers["build_type"], ros=ros),
+                          build_type=answers["build_type"], types=types),
+        definitions=definitions,
+        interfaces_location=answers.get("interfaces_location") or "separate",
     )

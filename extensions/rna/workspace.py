@@ -1,0 +1,60 @@
+"""Interfaces that already exist on disk, found without a ROS installation.
+
+The destination and the workspace around it (the nearest `src` folder above it, or
+its parent folder) are searched for packages (a package.xml) and their
+msg/*.msg, srv/*.srv and action/*.action files, so that the questions can offer
+them by their full names.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from pathlib import Path
+
+_SKIP = {"build", "install", "log", "devel", "node_modules", "__pycache__"}
+_NAME = re.compile(r"<name>\s*([^<\s]+)\s*</name>")
+KIND_FOLDERS = ("msg", "srv", "action")
+
+
+def workspace_roots(destination: Path) -> list[Path]:
+    """Where to look: the destination, and the workspace source folder around it."""
+    destination = Path(destination).resolve()
+    roots = [destination]
+    for ancestor in destination.parents:
+        if ancestor.name == "src":
+            roots.append(ancestor)
+            break
+    else:
+        roots.append(destination.parent)
+    return roots
+
+
+def _packages(root: Path, depth: int = 4):
+    """(package name, folder) of every package.xml under root, not descending into packages."""
+    if not root.is_dir():
+        return
+    for current, folders, files in os.walk(root):
+        level = len(Path(current).relative_to(root).parts)
+        folders[:] = [f for f in folders if not f.startswith(".") and f not in _SKIP] if level < depth else []
+        if "package.xml" in files:
+            folders[:] = []
+            try:
+                match = _NAME.search((Path(current) / "package.xml").read_text(errors="replace"))
+            except OSError:
+                continue
+            if match:
+                yield match[1], Path(current)
+
+
+def find_interfaces(destination: Path, limit: int = 200) -> list[str]:
+    """Full names (pkg/msg/Name) of the interfaces on disk around `destination`, sorted."""
+    found: set[str] = set()
+    for root in workspace_roots(destination):
+        for package, folder in _packages(root):
+            for kind in KIND_FOLDERS:
+                for path in (folder / kind).glob(f"*.{kind}"):
+                    found.add(f"{package}/{kind}/{path.stem}")
+                    if len(found) >= limit:
+                        return sorted(found)
+    return sorted(found)
