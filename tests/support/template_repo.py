@@ -1,0 +1,543 @@
+"""Template repositories, generated projects and `copier update` runs for the update tests.
+
+`copier update` needs what a real user has: a template in git with version tags, and a
+project that is a clean git repository generated from one of those tags. This module
+builds both in temporary folders:
+
+* `snapshot_repo()`: the working tree's template (copier.yml, template/, extensions/)
+  committed in a fresh repository and tagged, e.g. v0.2.0;
+* `release_history_repo()`: the real v0.1.0 of this repository (`git archive v0.1.0`)
+  tagged v0.1.0, with the working tree committed on top and tagged v0.2.0, so an update
+  from 0.1.0 to 0.2.0 runs over real history;
+* `generate_project()`: `copier copy` from one tag with machine-independent answers, then
+  `git init` and a commit;
+* `run_update()`: the `copier` command line, `copier update --trust --defaults`, as a
+  subprocess with stdin closed;
+* `append_after()`, `insert_before()`, `replace_text()`: user edits that fail loudly when
+  the text they are anchored to is missing, so a template change never turns a scenario
+  into one that silently edits nothing.
+
+It is also a pytest plugin (`pytest_plugins = ("support.template_repo",)`): session
+fixtures build each template repository and each base project once, and `project()` hands
+every test its own copy.
+"""
+
+from __future__ import annotations
+
+import copy
+import io
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tarfile
+from dataclasses import dataclass
+from pathlib import Path
+
+import pytest
+import yaml
+
+from conftest import FIXED_ANSWERS, ROOT, TEMPLATE_ITEMS, snapshot_template
+
+OLD_VERSION = "v0.1.0"
+NEW_VERSION = "v0.2.0"
+
+CONFLICT_MARKERS = ("<<<<<<< before updating", ">>>>>>> after updating")
+ANSWERS_FILE = ".copier-answers.yml"
+
+GIT_IDENTITY = {
+    "GIT_AUTHOR_NAME": "rna tests", "GIT_AUTHOR_EMAIL": "tests@example.com",
+    "GIT_COMMITTER_NAME": "rna tests", "GIT_COMMITTER_EMAIL": "tests@example.com",
+}
+ANSI = re.compile(r"\x1b\[[0-9;]*[A-Za-z]")
+
+
+def _env() -> dict[str, str]:
+    """The environment of every git and copier subprocess: a git identity, no colours."""
+    return {**os.environ, **GIT_IDENTITY, "NO_COLOR": "1", "GIT_CONFIG_NOSYSTEM": "1"}
+
+
+def git(*args: str, cwd: Path, check: bool = True) -> subprocess.CompletedProcess:
+    result = subprocess.run(["git", *args], cwd=cwd, env=_env(), capture_output=True, text=True)
+    if check and result.returncode != 0:
+        raise AssertionError(f"git {' '.join(args)} failed in {cwd}:\n{result.stdout}{result.stderr}")
+    return result
+
+
+# ─── Template repositories ────────────────────────────────────────────────────
+
+
+@dataclass(frozen=True)
+class TemplateRepo:
+    path: Path
+    tags: tuple[str, ...]
+
+    @property
+    def latest(self) -> str:
+        return self.tags[-1]
+
+
+def snapshot_repo(destination: Path, version: str = NEW_VERSION) -> TemplateRepo:
+    """The working tree's template, committed in a fresh repository and tagged `version`."""
+    snapshot_template(destination)
+    git("tag", "-a", version, "-m", f"rna-template {version} (working tree snapshot)", cwd=destination)
+    return TemplateRepo(destination, (version,))
+
+
+def require_tag(tag: str, source: Path = ROOT) -> None:
+    """Fail the test, saying what to do, when this repository lacks the release tag."""
+    found = git("rev-parse", "-q", "--verify", f"refs/tags/{tag}^{{commit}}", cwd=source, check=False)
+    if found.returncode != 0:
+        pytest.fail(
+            f"the upgrade tests need the release tag {tag} in {source}, and it is missing "
+            f"(a shallow clone or a checkout without tags?): run `git fetch --tags` "
+            f"or `git fetch origin tag {tag}`", pytrace=False)
+
+
+def release_history_repo(destination: Path, old: str = OLD_VERSION, new: str = NEW_VERSION,
+                         source: Path = ROOT, new_tree: Path | None = None) -> TemplateRepo:
+    """The real `old` release of this repository tagged `old`, the working tree on top tagged `new`.
+
+    `new_tree` (default: `source`'s working tree) is where the new version's copier.yml,
+    template/ and extensions/ are taken from: passing the snapshot repository of the same
+    session makes both v0.2.0 identical even while the working tree is being edited.
+    """
+    require_tag(old, source)
+    archive = subprocess.run(["git", "-C", str(source), "archive", "--format=tar", old, *TEMPLATE_ITEMS],
+                             capture_output=True, check=True)
+    destination.mkdir(parents=True, exist_ok=True)
+    with tarfile.open(fileobj=io.BytesIO(archive.stdout)) as tar:
+        tar.extractall(destination, filter="tar")
+    git("init", "-q", "-b", "main", cwd=destination)
+    git("add", "-A", cwd=destination)
+    git("commit", "-q", "-m", f"rna-template {old} (from git archive {old})", cwd=destination)
+    git("tag", "-a", old, "-m", f"rna-template {old}", cwd=destination)
+
+    for item in TEMPLATE_ITEMS:
+        path = destination / item
+        shutil.rmtree(path) if path.is_dir() else path.unlink()
+        origin = (new_tree or source) / item
+        if origin.is_dir():
+            shutil.copytree(origin, path, ignore=shutil.ignore_patterns("__pycache__"))
+        else:
+            shutil.copy2(origin, path)
+    git("add", "-A", cwd=destination)
+    # The working tree may equal the release (nothing changed yet): still a new version.
+    git("commit", "-q", "--allow-empty", "-m", f"rna-template {new} (working tree)", cwd=destination)
+    git("tag", "-a", new, "-m", f"rna-template {new}", cwd=destination)
+    return TemplateRepo(destination, (old, new))
+
+
+# ─── Projects ─────────────────────────────────────────────────────────────────
+
+
+def generate_project(template: TemplateRepo | Path, destination: Path, answers: dict,
+                     vcs_ref: str | None = None) -> Path:
+    """`copier copy` from one tag with fixed answers, then `git init` and a first commit."""
+    import copier
+
+    repo = template.path if isinstance(template, TemplateRepo) else Path(template)
+    ref = vcs_ref or (template.latest if isinstance(template, TemplateRepo) else "HEAD")
+    copier.run_copy(str(repo), str(destination), data={**FIXED_ANSWERS, **answers}, defaults=True,
+                    unsafe=True, quiet=True, vcs_ref=ref)
+    git("init", "-q", "-b", "main", cwd=destination)
+    commit_all(destination, f"generated from rna-template {ref}")
+    return destination
+
+
+def commit_all(project: Path, message: str = "my edits") -> None:
+    """What a user does before `copier update`: commit everything (the update needs a clean tree)."""
+    git("add", "-A", cwd=project)
+    git("commit", "-q", "--allow-empty", "-m", message, cwd=project)
+
+
+def clone_project(project: Path, destination: Path) -> Path:
+    """A private copy of a generated project (its git history included) for one scenario."""
+    shutil.copytree(project, destination, symlinks=True)
+    return destination
+
+
+def answers_of(project: Path) -> dict:
+    return yaml.safe_load((project / ANSWERS_FILE).read_text())
+
+
+def user_answers(project: Path) -> dict:
+    """The recorded answers without Copier's own keys (`_commit`, `_src_path`)."""
+    return {key: value for key, value in answers_of(project).items() if not key.startswith("_")}
+
+
+@dataclass
+class UpdateResult:
+    returncode: int
+    stdout: str
+    stderr: str
+    command: list[str]
+
+    @property
+    def output(self) -> str:
+        return self.stdout + self.stderr
+
+    def __str__(self) -> str:
+        return (f"$ {' '.join(self.command)}\nexit code {self.returncode}\n"
+                f"--- stdout\n{self.stdout}\n--- stderr\n{self.stderr}")
+
+
+def run_update(project: Path, data: dict | None = None, vcs_ref: str | None = None,
+               extra_args: tuple[str, ...] = (), timeout: float = 300) -> UpdateResult:
+    """`copier update --trust --defaults [--data-file f] [--vcs-ref v]` in `project`, stdin closed.
+
+    The data file is written beside the project, not in it: an untracked file would make
+    the project dirty and Copier would refuse to update.
+    """
+    command = [sys.executable, "-m", "copier", "update", "--trust", "--defaults"]
+    if data is not None:
+        data_file = project.parent / f"{project.name}.update-data.yml"
+        data_file.write_text(yaml.safe_dump(data, sort_keys=False))
+        command += ["--data-file", str(data_file)]
+    if vcs_ref is not None:
+        command += ["--vcs-ref", vcs_ref]
+    command += list(extra_args)
+    result = subprocess.run(command, cwd=project, env=_env(), stdin=subprocess.DEVNULL,
+                            capture_output=True, text=True, timeout=timeout)
+    return UpdateResult(result.returncode, ANSI.sub("", result.stdout), ANSI.sub("", result.stderr), command)
+
+
+# ─── What an update left behind ───────────────────────────────────────────────
+
+
+def project_files(project: Path) -> list[Path]:
+    return sorted(p for p in project.rglob("*") if p.is_file() and ".git" not in p.relative_to(project).parts)
+
+
+def conflicted_files(project: Path) -> list[str]:
+    """Files holding Copier's conflict markers, `.rej` files and paths git records as unmerged."""
+    found = set()
+    for path in project_files(project):
+        relative = str(path.relative_to(project))
+        if path.suffix == ".rej":
+            found.add(relative)
+            continue
+        try:
+            text = path.read_text()
+        except UnicodeDecodeError:
+            continue
+        if any(line.rstrip() in CONFLICT_MARKERS for line in text.splitlines()):
+            found.add(relative)
+    unmerged = git("ls-files", "--unmerged", cwd=project).stdout
+    found.update(line.split("\t", 1)[1] for line in unmerged.splitlines() if "\t" in line)
+    return sorted(found)
+
+
+def conflict_regions(text: str) -> list[tuple[list[str], list[str]]]:
+    """(the project's side, the template's side) of every `<<<<<<< before updating` block."""
+    regions, ours, theirs, side = [], [], [], None
+    for line in text.splitlines():
+        if line.startswith("<<<<<<< before updating"):
+            ours, theirs, side = [], [], "ours"
+        elif side and line.startswith("|||||||"):
+            side = "base"
+        elif side and line.startswith("======="):
+            side = "theirs"
+        elif side and line.startswith(">>>>>>> after updating"):
+            regions.append((ours, theirs))
+            side = None
+        elif side == "ours":
+            ours.append(line)
+        elif side == "theirs":
+            theirs.append(line)
+    return regions
+
+
+def tree_differences(left: Path, right: Path, ignore_answer_keys: tuple[str, ...] = ("_commit",)) -> list[str]:
+    """`diff -r` of two generated projects, ignoring `.git` and the given keys of the answers file."""
+    differences = []
+
+    def relative_files(root: Path) -> set[str]:
+        return {str(p.relative_to(root)) for p in project_files(root)}
+
+    left_files, right_files = relative_files(left), relative_files(right)
+    differences += [f"only in {left.name}: {name}" for name in sorted(left_files - right_files)]
+    differences += [f"only in {right.name}: {name}" for name in sorted(right_files - left_files)]
+    for name in sorted(left_files & right_files):
+        a, b = (left / name).read_bytes(), (right / name).read_bytes()
+        if name == ANSWERS_FILE:
+            a, b = (_without_keys(x.decode(), ignore_answer_keys).encode() for x in (a, b))
+        if a != b:
+            diff = subprocess.run(["diff", "-u", str(left / name), str(right / name)], capture_output=True,
+                                  text=True).stdout
+            differences.append(f"{name} differs:\n{diff}")
+        elif os.access(left / name, os.X_OK) != os.access(right / name, os.X_OK):
+            differences.append(f"{name}: the executable bit differs")
+    return differences
+
+
+def _without_keys(text: str, keys: tuple[str, ...]) -> str:
+    return "".join(line for line in text.splitlines(keepends=True)
+                   if not any(line.startswith(f"{key}:") for key in keys))
+
+
+# ─── User edits ───────────────────────────────────────────────────────────────
+
+
+def _lines_of(text: str | list[str]) -> list[str]:
+    return list(text) if isinstance(text, list) else text.split("\n")
+
+
+def _anchor_index(lines: list[str], path: Path, anchor: str, occurrence: int | None) -> int:
+    hits = [index for index, line in enumerate(lines) if anchor in line]
+    if not hits:
+        raise AssertionError(f"edit anchor not found in {path}: {anchor!r}\n--- the file:\n" + "\n".join(lines))
+    if occurrence is None:
+        if len(hits) > 1:
+            raise AssertionError(f"edit anchor {anchor!r} is on {len(hits)} lines of {path} "
+                                 f"({[h + 1 for h in hits]}): pass occurrence= to choose one")
+        return hits[0]
+    if occurrence >= len(hits):
+        raise AssertionError(f"edit anchor {anchor!r} is on {len(hits)} lines of {path}, not {occurrence + 1}")
+    return hits[occurrence]
+
+
+def append_after(path: Path, anchor: str, text: str | list[str], occurrence: int | None = None) -> list[str]:
+    """Insert lines after the (only) line containing `anchor`; returns the inserted lines."""
+    lines = path.read_text().split("\n")
+    index = _anchor_index(lines, path, anchor, occurrence)
+    added = _lines_of(text)
+    lines[index + 1:index + 1] = added
+    path.write_text("\n".join(lines))
+    return added
+
+
+def insert_before(path: Path, anchor: str, text: str | list[str], occurrence: int | None = None) -> list[str]:
+    """Insert lines before the (only) line containing `anchor`; returns the inserted lines."""
+    lines = path.read_text().split("\n")
+    index = _anchor_index(lines, path, anchor, occurrence)
+    added = _lines_of(text)
+    lines[index:index] = added
+    path.write_text("\n".join(lines))
+    return added
+
+
+def replace_text(path: Path, old: str, new: str, count: int = 1) -> list[str]:
+    """Replace exactly `count` occurrences of `old`; returns the lines of `new`."""
+    text = path.read_text()
+    found = text.count(old)
+    if found != count:
+        raise AssertionError(f"expected {count} occurrence(s) of {old!r} in {path}, found {found}"
+                             f"\n--- the file:\n{text}")
+    path.write_text(text.replace(old, new))
+    return new.split("\n")
+
+
+def write_new_file(path: Path, text: str, executable: bool = False) -> list[str]:
+    """A file the user adds to the package; returns its lines."""
+    if path.exists():
+        raise AssertionError(f"{path} already exists: a scenario's new file must be new")
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text)
+    if executable:
+        path.chmod(0o755)
+    return text.split("\n")
+
+
+def missing_block(path: Path, lines: list[str]) -> str | None:
+    """None when `lines` are in the file, one after the other; otherwise what is missing."""
+    if not path.is_file():
+        return f"{path} is gone"
+    text = path.read_text()
+    if "\n".join(lines) in text:
+        return None
+    present = set(text.split("\n"))
+    missing = [line for line in lines if line not in present]
+    if missing:
+        return f"{path}: lines missing: {missing}"
+    return f"{path}: every line is there, but not in the order written: {lines}"
+
+
+def managed_lines(text: str) -> list[str]:
+    """The lines between `BEGIN rna-template` and `END rna-template` markers."""
+    inside, lines = False, []
+    for line in text.splitlines():
+        if "BEGIN rna-template" in line:
+            inside = True
+        elif "END rna-template" in line:
+            inside = False
+        elif inside:
+            lines.append(line)
+    return lines
+
+
+def unmanaged_lines(text: str) -> list[str]:
+    """The lines outside the managed blocks (the markers excluded)."""
+    inside, lines = False, []
+    for line in text.splitlines():
+        if "BEGIN rna-template" in line:
+            inside = True
+        elif "END rna-template" in line:
+            inside = False
+        elif not inside:
+            lines.append(line)
+    return lines
+
+
+# ─── The base projects the update tests grow ──────────────────────────────────
+# Three flavours of one package `robot`, each with three nodes: `driver` and `monitor`
+# (the nodes whose files users edit) and `logger` (the "other" node).
+
+DRIVER = {
+    "publishers": ["cmd_vel:geometry_msgs/msg/Twist"],
+    "subscribers": ["odom:nav_msgs/msg/Odometry"],
+    "timers": ["control_loop:0.1"],
+    "parameters": [
+        {"name": "gain", "type": "double", "default": 1.0, "description": "Proportional gain"},
+        "frame_id:string=base_link",
+        "max_speed:double=0.5",
+    ],
+}
+MONITOR = {
+    "subscribers": ["cmd_vel:geometry_msgs/msg/Twist"],
+    "service_servers": ["reset:std_srvs/srv/Trigger"],
+    "parameters": ["limit:int=5"],
+}
+LOGGER = {
+    "subscribers": ["/diagnostics:diagnostic_msgs/msg/DiagnosticArray"],
+    "parameters": ["verbose=true"],
+}
+
+BASE_ANSWERS = {
+    "ament_python": {"package_name": "robot", "build_type": "ament_python", "nodes": [
+        {"name": "driver", **DRIVER}, {"name": "monitor", **MONITOR}, {"name": "logger", **LOGGER}]},
+    "ament_cmake": {"package_name": "robot", "build_type": "ament_cmake", "nodes": [
+        {"name": "driver", "language": "cpp", **DRIVER},
+        {"name": "monitor", "language": "python", **MONITOR},
+        {"name": "logger", "language": "cpp", **LOGGER}]},
+    "catkin": {"package_name": "robot", "ros_distro": "noetic", "nodes": [
+        {"name": "driver", "language": "cpp", **DRIVER},
+        {"name": "monitor", "language": "python", **MONITOR},
+        {"name": "logger", "language": "python", **LOGGER}]},
+}
+FLAVORS = tuple(BASE_ANSWERS)
+PACKAGE = "robot"
+
+
+@dataclass(frozen=True)
+class Flavor:
+    """Where a flavour of the base project keeps each file (paths relative to the project)."""
+
+    name: str
+
+    @property
+    def answers(self) -> dict:
+        return copy.deepcopy(BASE_ANSWERS[self.name])
+
+    @property
+    def ros1(self) -> bool:
+        return self.name == "catkin"
+
+    def language(self, node: str, nodes: list[dict] | None = None) -> str:
+        for entry in nodes or self.answers["nodes"]:
+            if entry["name"] == node:
+                return entry.get("language", "python" if self.name == "ament_python" else "cpp")
+        raise KeyError(node)
+
+    def user_file(self, node: str, language: str | None = None) -> str:
+        language = language or self.language(node)
+        if language == "cpp":
+            return f"{PACKAGE}/src/{node}.cpp"
+        return f"{PACKAGE}/scripts/{node}.py" if self.ros1 else f"{PACKAGE}/{PACKAGE}/{node}.py"
+
+    def base_file(self, node: str, language: str | None = None) -> str:
+        language = language or self.language(node)
+        if language == "cpp":
+            return f"{PACKAGE}/include/{PACKAGE}/{node}_base.{'h' if self.ros1 else 'hpp'}"
+        return f"{PACKAGE}/src/{PACKAGE}/{node}_base.py" if self.ros1 else f"{PACKAGE}/{PACKAGE}/{node}_base.py"
+
+    def config_file(self, node: str) -> str:
+        return f"{PACKAGE}/config/{node}.yaml"
+
+    @property
+    def launch_file(self) -> str:
+        return f"{PACKAGE}/launch/{PACKAGE}.launch" + ("" if self.ros1 else ".xml")
+
+    @property
+    def build_file(self) -> str:
+        return f"{PACKAGE}/setup.py" if self.name == "ament_python" else f"{PACKAGE}/CMakeLists.txt"
+
+    @property
+    def package_xml(self) -> str:
+        return f"{PACKAGE}/package.xml"
+
+
+def find_node(nodes: list[dict], name: str) -> dict:
+    for node in nodes:
+        if node["name"] == name:
+            return node
+    raise KeyError(f"no node {name!r} in {[n['name'] for n in nodes]}")
+
+
+# ─── Fixtures (this module is a pytest plugin of test_update and test_merge_safety) ──
+
+
+def pytest_configure(config):
+    # Registered here too, so `-m update` works wherever the plugin is loaded; the first
+    # module that uses the mark is imported before this runs, hence one warning until
+    # conftest.py registers it.
+    config.addinivalue_line("markers", "update: runs `copier update` on generated projects (tests/test_update.py, "
+                                       "tests/test_merge_safety.py)")
+
+
+@pytest.fixture(scope="session")
+def current_template(tmp_path_factory) -> TemplateRepo:
+    """The working tree's template, tagged v0.2.0."""
+    return snapshot_repo(tmp_path_factory.mktemp("template-current"), NEW_VERSION)
+
+
+@pytest.fixture(scope="session")
+def release_template(tmp_path_factory, current_template) -> TemplateRepo:
+    """The v0.1.0 release from this repository's tag, then the working tree as v0.2.0."""
+    return release_history_repo(tmp_path_factory.mktemp("template-history"), new_tree=current_template.path)
+
+
+@pytest.fixture(scope="session")
+def base_project(request, tmp_path_factory):
+    """base_project(flavor, version): the base project generated once per session (do not edit it)."""
+    cache: dict[tuple[str, str], Path] = {}
+
+    def get(flavor: str, version: str = NEW_VERSION) -> Path:
+        if (flavor, version) not in cache:
+            template = request.getfixturevalue("release_template" if version == OLD_VERSION else "current_template")
+            destination = tmp_path_factory.mktemp(f"base-{flavor}-{version}") / "project"
+            cache[flavor, version] = generate_project(template, destination, BASE_ANSWERS[flavor], vcs_ref=version)
+        return cache[flavor, version]
+
+    return get
+
+
+@pytest.fixture
+def project(base_project, tmp_path):
+    """project(flavor, version): a private, committed copy of a base project."""
+    def make(flavor: str, version: str = NEW_VERSION, name: str = "project") -> Path:
+        return clone_project(base_project(flavor, version), tmp_path / name)
+
+    return make
+
+
+def conflict_excerpts(project: Path, context: int = 2) -> str:
+    """Each conflict block of the project's files with a few lines around it, for a failure message."""
+    parts = []
+    for relative in conflicted_files(project):
+        path = project / relative
+        if not path.is_file():
+            parts.append(f"--- {relative}: (not a file)")
+            continue
+        lines = path.read_text().splitlines()
+        starts = [i for i, line in enumerate(lines) if line.startswith("<<<<<<< before updating")]
+        for start in starts:
+            end = next((i for i in range(start, len(lines)) if lines[i].startswith(">>>>>>> after updating")),
+                       len(lines) - 1)
+            excerpt = lines[max(0, start - context):end + context + 1]
+            parts.append(f"--- {relative}, lines {max(0, start - context) + 1}-{end + context + 1}:\n"
+                         + "\n".join(excerpt))
+        if not starts:
+            parts.append(f"--- {relative}\n" + path.read_text())
+    return "\n".join(parts)

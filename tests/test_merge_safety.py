@@ -1,0 +1,415 @@
+"""`copier update` never loses a line the user wrote: realistic edits x template and answer changes.
+
+A "lived-in" package carries every kind of edit people make to a generated package (code
+in callbacks, helper methods, imports and includes, build lines and dependencies after the
+managed blocks, new files, tuned parameters, extra launch actions, README paragraphs).
+Each scenario crosses it with one change (a node added or removed, an endpoint or a
+parameter added to the edited node or to another one, a default changed, the template
+upgraded from 0.1.0 to 0.2.0) and requires exit code 0, no conflict markers, the user's
+files untouched and every line the user wrote still in place.
+
+The conflict scenarios edit lines INSIDE a managed block that the change also rewrites:
+there a conflict cannot be avoided, and `copier update` must exit 1, name the file and
+leave the user's line on the "before updating" side of the conflict.
+"""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import pytest
+
+if "support.template_repo" not in sys.modules:  # its asserts explain themselves too
+    pytest.register_assert_rewrite("support.template_repo")
+from support.template_repo import (  # noqa: E402
+    FLAVORS, NEW_VERSION, OLD_VERSION, Flavor, answers_of, append_after, commit_all, conflict_excerpts,
+    conflict_regions, conflicted_files, find_node, insert_before, missing_block, replace_text, run_update,
+    write_new_file,
+)
+
+pytest_plugins = ("support.template_repo",)
+pytestmark = pytest.mark.update
+
+
+# ─── Recording what the user wrote ────────────────────────────────────────────
+
+
+@dataclass
+class Edits:
+    """Applies edits to a project and remembers each block of lines the user wrote."""
+
+    project: Path
+    blocks: list[tuple[str, str, list[str]]] = field(default_factory=list)  # (label, path, lines)
+    owned: dict[str, str] = field(default_factory=dict)  # files the user owns: path -> content
+
+    def after(self, label: str, path: str, anchor: str, text: str, occurrence: int | None = None) -> None:
+        self.blocks.append((label, path, append_after(self.project / path, anchor, text, occurrence)))
+
+    def before(self, label: str, path: str, anchor: str, text: str) -> None:
+        self.blocks.append((label, path, insert_before(self.project / path, anchor, text)))
+
+    def replace(self, label: str, path: str, old: str, new: str) -> None:
+        self.blocks.append((label, path, replace_text(self.project / path, old, new)))
+
+    def new_file(self, label: str, path: str, text: str, executable: bool = False) -> None:
+        self.blocks.append((label, path, write_new_file(self.project / path, text, executable)))
+
+    def own(self, path: str) -> None:
+        """The whole file is the user's: after the update it must be byte for byte the same."""
+        self.owned[path] = (self.project / path).read_text()
+
+    def commit(self) -> None:
+        for path in list(self.owned):
+            self.own(path)
+        commit_all(self.project, "my edits")
+
+    def problems(self) -> list[str]:
+        found = [f"[{label}] {problem}" for label, path, lines in self.blocks
+                 if (problem := missing_block(self.project / path, lines))]
+        found += [f"{path}: the user's file was changed by the update" for path, text in self.owned.items()
+                  if not (self.project / path).is_file() or (self.project / path).read_text() != text]
+        return found
+
+
+# ─── The edits of a lived-in package ──────────────────────────────────────────
+
+EDITED_NODES = ("driver", "monitor")  # user files edited; `logger` is the "other" node
+
+
+def edit_python_node(edits: Edits, path: str, node: str, ros1: bool) -> None:
+    log = "rospy.loginfo(" if ros1 else "self.get_logger().info("
+    callback, between = {
+        "driver": (f"{log}'Received a message on odom')", "    def on_odom(self, msg):"),
+        "monitor": (f"{log}'Answering a reset request')", "    def on_reset_request(self, request"),
+    }[node]
+    edits.after("code in a callback", path, callback,
+                "        # mine: remember what came last, for the control loop\n"
+                "        self.last_seen = math.floor(10.0)")
+    edits.before("a helper method between methods", path, between,
+                 "    def clamp(self, value, limit=1.0):\n"
+                 "        \"\"\"Keep a command inside +-limit (mine).\"\"\"\n"
+                 "        return max(-limit, min(limit, value))\n")
+    edits.replace("a helper method at the end of the class", path, "\n\n\ndef main(",
+                  "\n\n    def distance_to(self, x, y):\n"
+                  "        \"\"\"Distance from the origin (mine).\"\"\"\n"
+                  "        return math.hypot(x, y)\n\n\ndef main(")
+    edits.before("an extra import", path, "import rospy" if ros1 else "import rclpy", "import math\n")
+    edits.own(path)
+
+
+def edit_cpp_node(edits: Edits, path: str, ros1: bool) -> None:
+    log = 'ROS_INFO("Received a message on odom");' if ros1 else \
+        'RCLCPP_INFO(get_logger(), "Received a message on odom");'
+    position = "msg->pose.pose.position.x" if ros1 else "msg.pose.pose.position.x"
+    edits.after("code in a callback", path, log,
+                f"    // mine: remember where the robot is\n    last_x_ = {position};")
+    edits.before("a helper method between methods", path, "  /// Handles a message from odom.",
+                 "  /// Keeps a command inside +-limit (mine).\n"
+                 "  static double clamp(double value, double limit)\n"
+                 "  {\n"
+                 "    return std::max(-limit, std::min(limit, value));\n"
+                 "  }\n")
+    edits.after("a member and a helper method at the end of the class", path, "std::size_t count_ = 0;",
+                "  double last_x_ = 0.0;\n"
+                "\n"
+                "  double distance_to(double x, double y) const\n"
+                "  {\n"
+                "    return std::hypot(x - last_x_, y);\n"
+                "  }")
+    edits.before("extra includes", path, "#include <cstddef>", "#include <algorithm>\n#include <cmath>")
+    edits.own(path)
+
+
+def lived_in(project: Path, flavor: Flavor) -> Edits:
+    """Every kind of edit of the issue, in one package; committed."""
+    edits = Edits(project)
+    for node in EDITED_NODES:
+        path = flavor.user_file(node)
+        if flavor.language(node) == "cpp":
+            edit_cpp_node(edits, path, flavor.ros1)
+        else:
+            edit_python_node(edits, path, node, flavor.ros1)
+
+    edits.after("a <depend> after END", flavor.package_xml,
+                "<!-- END rna-template: add your own dependencies below -->",
+                f"  <depend>tf2_ros</depend>\n  <exec_depend>{'rviz' if flavor.ros1 else 'rviz2'}</exec_depend>")
+
+    if flavor.name == "ament_python":
+        edits.after("a console_scripts entry point after END", flavor.build_file,
+                    "# END rna-template: add your own executables below",
+                    "            'calibrate = robot.calibrate:main',")
+        edits.after("a data_files line", flavor.build_file, "glob('launch/*.launch.xml')),",
+                    "        ('share/' + package_name + '/maps', glob('maps/*.yaml')),")
+        edits.new_file("a new executable module", "robot/robot/calibrate.py",
+                       '"""Calibrates the driver (mine)."""\n\n\ndef main():\n    print(\'calibrating\')\n')
+    elif flavor.name == "ament_cmake":
+        edits.after("find_package() after END", flavor.build_file,
+                    "# END rna-template: add your own find_package() calls below",
+                    "find_package(tf2_ros REQUIRED)")
+        edits.after("a target, target_link_libraries() and install() after END", flavor.build_file,
+                    "# END rna-template: add your own targets below",
+                    "target_link_libraries(driver PRIVATE tf2_ros::tf2_ros)\n"
+                    "\n"
+                    "add_executable(calibrate src/calibrate.cpp)\n"
+                    "target_link_libraries(calibrate PRIVATE rclcpp::rclcpp tf2_ros::tf2_ros)\n"
+                    "install(TARGETS calibrate DESTINATION lib/${PROJECT_NAME})")
+        edits.new_file("a new C++ source", "robot/src/calibrate.cpp", "int main() { return 0; }  // mine\n")
+    else:
+        edits.replace("a component added to find_package()", flavor.build_file,
+                      "find_package(catkin REQUIRED COMPONENTS ${node_dependencies})",
+                      "find_package(catkin REQUIRED COMPONENTS ${node_dependencies} tf2_ros)")
+        edits.replace("a package added to catkin_package()", flavor.build_file,
+                      "  CATKIN_DEPENDS ${node_dependencies}\n",
+                      "  CATKIN_DEPENDS ${node_dependencies} tf2_ros\n")
+        edits.after("a target, target_link_libraries() and install() after END", flavor.build_file,
+                    "# END rna-template: add your own targets below",
+                    "add_executable(calibrate src/calibrate.cpp)\n"
+                    "target_link_libraries(calibrate ${catkin_LIBRARIES})\n"
+                    "install(TARGETS calibrate RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})")
+        edits.new_file("a new C++ source", "robot/src/calibrate.cpp", "int main() { return 0; }  // mine\n")
+
+    utility = {"ament_python": "robot/robot/geometry_utils.py", "ament_cmake": "robot/robot/geometry_utils.py",
+               "catkin": "robot/src/robot/geometry_utils.py"}[flavor.name]
+    edits.new_file("a utility module", utility,
+                   '"""Geometry helpers (mine)."""\n\nimport math\n\n\ndef wrap(angle):\n'
+                   '    return math.atan2(math.sin(angle), math.cos(angle))\n')
+    if flavor.ros1:
+        edits.new_file("a second launch file", "robot/launch/sim.launch",
+                       '<launch>\n  <include file="$(find robot)/launch/robot.launch"/>\n'
+                       '  <param name="use_sim_time" value="true"/>\n</launch>\n')
+    else:
+        edits.new_file("a second launch file", "robot/launch/sim.launch.xml",
+                       '<launch>\n  <include file="$(find-pkg-share robot)/launch/robot.launch.xml"/>\n'
+                       '  <set_parameter name="use_sim_time" value="true"/>\n</launch>\n')
+
+    edits.replace("a tuned parameter", flavor.config_file("driver"), "gain: 1.0", "gain: 1.8")
+    edits.replace("a tuned parameter", flavor.config_file("monitor"), "limit: 5", "limit: 9")
+
+    if flavor.ros1:
+        edits.after("an extra <node> after END", flavor.launch_file, "<!-- END rna-template",
+                    '  <node pkg="rviz" type="rviz" name="rviz" args="-d $(find robot)/config/robot.rviz"/>')
+    else:
+        edits.after("an extra <node> after END", flavor.launch_file, "<!-- END rna-template",
+                    '  <node pkg="rviz2" exec="rviz2" name="rviz" output="screen">\n'
+                    '    <param name="use_sim_time" value="false"/>\n'
+                    '  </node>')
+
+    edits.before("a README section", "README.md", "## Build and run",
+                 "## Hardware\n\nThe driver talks to the motor controller over CAN at 500 kbit/s;\n"
+                 "see the wiring diagram in docs/wiring.pdf.\n")
+    edits.replace("a README paragraph edited", "README.md",
+                  "override it in your class to act on the messages.",
+                  "override it in your class to act on the messages. Ask the lab before changing the answers.")
+    edits.commit()
+    return edits
+
+
+# ─── The changes ──────────────────────────────────────────────────────────────
+
+
+def new_node(flavor: Flavor) -> dict:
+    node = {"name": "planner", "subscribers": ["scan:sensor_msgs/msg/LaserScan:sensor_data"],
+            "publishers": ["path:nav_msgs/msg/Path"], "parameters": ["horizon:double=2.0"], "timers": ["0.2"]}
+    if flavor.name != "ament_python":
+        node["language"] = "cpp" if flavor.name == "ament_cmake" else "python"
+    return node
+
+
+def add_to(names: tuple[str, ...], kind: str, value: str) -> Callable[[Flavor, list[dict]], list[dict]]:
+    def change(flavor: Flavor, nodes: list[dict]) -> list[dict]:
+        for name in names:
+            node = find_node(nodes, name)
+            node[kind] = node.get(kind, []) + [value]
+        return nodes
+    return change
+
+
+def set_default(node_name: str, parameter: str, value: str) -> Callable[[Flavor, list[dict]], list[dict]]:
+    def change(flavor: Flavor, nodes: list[dict]) -> list[dict]:
+        node = find_node(nodes, node_name)
+        node["parameters"] = [f"{parameter}:{p.split(':')[1].split('=')[0]}={value}"
+                              if isinstance(p, str) and p.split(":")[0] == parameter else p
+                              for p in node["parameters"]]
+        return nodes
+    return change
+
+
+def remove(name: str) -> Callable[[Flavor, list[dict]], list[dict]]:
+    return lambda flavor, nodes: [node for node in nodes if node["name"] != name]
+
+
+@dataclass(frozen=True)
+class Change:
+    nodes: Callable[[Flavor, list[dict]], list[dict]] | None  # None: the template upgrade
+    effect: Callable[[Path, Flavor], bool]  # did the update do what the change asks?
+
+
+def text(project: Path, path: str) -> str:
+    return (project / path).read_text() if (project / path).is_file() else ""
+
+
+CHANGES = {
+    "add-a-node": Change(
+        lambda flavor, nodes: nodes + [new_node(flavor)],
+        lambda p, f: (p / f.config_file("planner")).is_file() and "planner" in text(p, f.launch_file)),
+    "add-a-subscriber-to-the-edited-nodes": Change(
+        add_to(EDITED_NODES, "subscribers", "scan:sensor_msgs/msg/LaserScan"),
+        lambda p, f: all("on_scan(" in text(p, f.base_file(n)) for n in EDITED_NODES)),
+    "add-a-publisher-to-the-edited-node": Change(
+        add_to(("driver",), "publishers", "status:std_msgs/msg/String"),
+        lambda p, f: "status_publisher" in text(p, f.base_file("driver"))),
+    "add-a-service-to-the-edited-node": Change(
+        add_to(("driver",), "service_servers", "calibrate:std_srvs/srv/Trigger"),
+        lambda p, f: "on_calibrate_request(" in text(p, f.base_file("driver"))),
+    "add-a-subscriber-to-another-node": Change(
+        add_to(("logger",), "subscribers", "odom:nav_msgs/msg/Odometry"),
+        lambda p, f: "on_odom(" in text(p, f.base_file("logger"))),
+    "add-a-publisher-to-another-node": Change(
+        add_to(("logger",), "publishers", "status:std_msgs/msg/String"),
+        lambda p, f: "status_publisher" in text(p, f.base_file("logger"))),
+    "add-a-service-to-another-node": Change(
+        add_to(("logger",), "service_servers", "clear:std_srvs/srv/Empty"),
+        lambda p, f: "on_clear_request(" in text(p, f.base_file("logger"))),
+    "add-a-parameter-to-the-edited-node": Change(
+        add_to(("driver",), "parameters", "timeout:double=0.5"),
+        lambda p, f: "timeout: 0.5" in text(p, f.config_file("driver"))),
+    # monitor's only parameter, limit, is tuned: the new one goes right after its line
+    "add-a-parameter-after-a-tuned-one": Change(
+        add_to(("monitor",), "parameters", "window:int=10"),
+        lambda p, f: "window: 10" in text(p, f.config_file("monitor"))),
+    # frame_id's line is right after the tuned gain's line in config/driver.yaml
+    "change-the-default-next-to-a-tuned-parameter": Change(
+        set_default("driver", "frame_id", "odom"),
+        lambda p, f: "frame_id: odom" in text(p, f.config_file("driver"))),
+    # max_speed's line is two lines below the tuned gain's
+    "change-the-default-of-another-parameter": Change(
+        set_default("driver", "max_speed", "0.9"),
+        lambda p, f: "max_speed: 0.9" in text(p, f.config_file("driver"))),
+    "remove-another-node": Change(
+        remove("logger"),
+        lambda p, f: not (p / f.config_file("logger")).exists() and "logger" not in text(p, f.launch_file)),
+    "template-upgrade-0.1.0-to-0.2.0": Change(
+        None, lambda p, f: answers_of(p)["_commit"] == NEW_VERSION),
+}
+
+
+def apply_change(project: Path, flavor: Flavor, change: Change):
+    if change.nodes is None:
+        return run_update(project, vcs_ref=NEW_VERSION)
+    return run_update(project, {"nodes": change.nodes(flavor, flavor.answers["nodes"])})
+
+
+# ─── Scenarios without conflicts ──────────────────────────────────────────────
+
+
+@pytest.mark.parametrize("change_name", CHANGES)
+@pytest.mark.parametrize("flavor_name", FLAVORS)
+def test_user_lines_survive(project, flavor_name, change_name):
+    flavor = Flavor(flavor_name)
+    change = CHANGES[change_name]
+    destination = project(flavor_name, OLD_VERSION if change.nodes is None else NEW_VERSION)
+    edits = lived_in(destination, flavor)
+
+    result = apply_change(destination, flavor, change)
+
+    problems = edits.problems()
+    conflicts = conflicted_files(destination)
+    report = "\n".join([f"exit code {result.returncode}", *[f"conflict: {c}" for c in conflicts], *problems])
+    assert result.returncode == 0 and not conflicts and not problems, (
+        f"{report}\n{conflict_excerpts(destination)}\n{result}")
+    assert change.effect(destination, flavor), f"the update did not apply '{change_name}'\n{result}"
+
+
+# ─── Scenarios with an unavoidable conflict ───────────────────────────────────
+
+
+@dataclass(frozen=True)
+class Conflict:
+    flavor: str
+    path: Callable[[Flavor], str]
+    edit: Callable[[Path, Flavor], list[str]]  # returns the user's lines
+    nodes: Callable[[Flavor, list[dict]], list[dict]]
+
+
+def edit_dependency_line(project: Path, flavor: Flavor) -> list[str]:
+    tag = "exec_depend" if flavor.name == "ament_python" else "depend"
+    return replace_text(project / flavor.package_xml, f"  <{tag}>diagnostic_msgs</{tag}>",
+                        f'  <{tag} version_gte="1.12">diagnostic_msgs</{tag}>')
+
+
+def tune_gain(project: Path, flavor: Flavor) -> list[str]:
+    return [line.strip() for line in replace_text(project / flavor.config_file("driver"), "gain: 1.0", "gain: 1.8")]
+
+
+def set_gain_default(flavor: Flavor, nodes: list[dict]) -> list[dict]:
+    find_node(nodes, "driver")["parameters"][0]["default"] = 2.5
+    return nodes
+
+
+def link_inside_the_block(project: Path, flavor: Flavor) -> list[str]:
+    return replace_text(project / flavor.build_file, "  ${rcl_interfaces_TARGETS}\n  rclcpp::rclcpp)",
+                        "  ${rcl_interfaces_TARGETS}\n  rclcpp::rclcpp\n  tf2_ros::tf2_ros)")[-1:]
+
+
+def remap_inside_a_generated_node(project: Path, flavor: Flavor) -> list[str]:
+    anchor = "config/logger.yaml"
+    return append_after(project / flavor.launch_file, anchor,
+                        ['    <remap from="/diagnostics" to="/robot/diagnostics"/>'])
+
+
+def dependency_in_the_catkin_list(project: Path, flavor: Flavor) -> list[str]:
+    return append_after(project / flavor.build_file, "  std_srvs", ["  tf2_ros"])
+
+
+def readme_row(project: Path, flavor: Flavor) -> list[str]:
+    language = "C++" if flavor.language("driver") == "cpp" else "Python"
+    return replace_text(project / "README.md", f"| `driver` | {language} | Publishes cmd_vel and subscribes to odom. |",
+                        f"| `driver` | {language} | Publishes cmd_vel and subscribes to odom; drives the base. |")
+
+
+CONFLICTS = {
+    **{f"{name}-edited-depend-line-of-a-removed-node": Conflict(
+        name, lambda f: f.package_xml, edit_dependency_line, remove("logger")) for name in FLAVORS},
+    **{f"{name}-tuned-parameter-whose-default-changes": Conflict(
+        name, lambda f: f.config_file("driver"), tune_gain, set_gain_default) for name in FLAVORS},
+    "ament_cmake-link-library-added-inside-the-block": Conflict(
+        "ament_cmake", lambda f: f.build_file, link_inside_the_block,
+        add_to(("driver",), "subscribers", "scan:sensor_msgs/msg/LaserScan")),
+    "ament_python-remap-inside-a-generated-launch-node": Conflict(
+        "ament_python", lambda f: f.launch_file, remap_inside_a_generated_node, remove("logger")),
+    "catkin-remap-inside-a-generated-launch-node": Conflict(
+        "catkin", lambda f: f.launch_file, remap_inside_a_generated_node, remove("logger")),
+    "catkin-package-added-inside-node_dependencies": Conflict(
+        "catkin", lambda f: f.build_file, dependency_in_the_catkin_list,
+        lambda f, nodes: nodes + [{"name": "marker", "language": "python",
+                                   "publishers": ["markers:visualization_msgs/msg/MarkerArray"]}]),
+    "ament_python-readme-row-of-a-grown-node": Conflict(
+        "ament_python", lambda f: "README.md", readme_row,
+        add_to(("driver",), "subscribers", "scan:sensor_msgs/msg/LaserScan")),
+}
+
+
+@pytest.mark.parametrize("case", CONFLICTS)
+def test_edit_inside_a_managed_block_conflicts_loudly(project, case):
+    conflict = CONFLICTS[case]
+    flavor = Flavor(conflict.flavor)
+    destination = project(conflict.flavor)
+    path = conflict.path(flavor)
+    user_lines = conflict.edit(destination, flavor)
+    commit_all(destination, "an edit inside a managed block")
+
+    result = run_update(destination, {"nodes": conflict.nodes(flavor, flavor.answers["nodes"])})
+
+    assert result.returncode == 1, f"expected exit code 1 for a conflict in {path}\n{result}"
+    assert "copier update could not merge your edits in these files" in result.stderr, result
+    assert f"  {path}\n" in result.stderr, f"{path} is not named\n{result}"
+    assert path in conflicted_files(destination)
+    regions = conflict_regions((destination / path).read_text())
+    assert regions, f"no conflict block in {path}\n{(destination / path).read_text()}"
+    ours = [line.strip() for region, _ in regions for line in region]
+    for line in user_lines:
+        assert line.strip() in ours, (f"the user's line {line.strip()!r} is not on the 'before updating' side "
+                                      f"in {path}:\n{(destination / path).read_text()}")

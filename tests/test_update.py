@@ -1,0 +1,434 @@
+"""`copier update` end to end: grow a generated package, shrink it, and upgrade the template.
+
+Every test runs the real `copier` command line in a private copy of a base project that
+was generated once per session (tests/support/template_repo.py), on the three flavours:
+ament_python, ament_cmake (a C++ and a Python node) and catkin (ROS 1). Each checks the
+exit code, that no conflict marker or .rej file is left, and that what was added or
+removed shows in package.xml (catkin_pkg), the launch file (ElementTree), the build file
+(setup.py entry points, CMake targets) and the node files.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import sys
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import pytest
+import yaml
+from catkin_pkg.package import parse_package
+
+if "support.template_repo" not in sys.modules:  # its asserts explain themselves too
+    pytest.register_assert_rewrite("support.template_repo")
+from support.template_repo import (  # noqa: E402
+    FLAVORS, NEW_VERSION, OLD_VERSION, Flavor, answers_of, append_after, commit_all, conflict_excerpts,
+    conflicted_files, find_node, generate_project, managed_lines, missing_block, replace_text, run_update,
+    tree_differences, unmanaged_lines, user_answers,
+)
+
+pytest_plugins = ("support.template_repo",)
+pytestmark = pytest.mark.update
+
+
+# ─── Reading a generated package ──────────────────────────────────────────────
+
+
+def assert_clean_update(result, project: Path) -> None:
+    assert result.returncode == 0, f"copier update failed\n{result}"
+    conflicts = conflicted_files(project)
+    assert not conflicts, f"conflicts left in {conflicts}\n{conflict_excerpts(project)}\n{result}"
+
+
+def dependency_names(package_xml: Path) -> set[str]:
+    package = parse_package(str(package_xml))
+    package.validate()
+    return {d.name for d in package.build_depends + package.exec_depends + package.build_export_depends}
+
+
+def launched(project: Path, flavor: Flavor) -> dict[str, tuple[str, str]]:
+    """node name -> (executable, the config file it loads), from the launch file."""
+    root = ET.parse(project / flavor.launch_file).getroot()
+    nodes = {}
+    for node in root.iter("node"):
+        if node.get("pkg") != "robot":
+            continue
+        if flavor.ros1:
+            nodes[node.get("name")] = (node.get("type"), node.find("rosparam").get("file"))
+        else:
+            nodes[node.get("name")] = (node.get("exec"), node.find("param").get("from"))
+    return nodes
+
+
+def expected_launch_entry(flavor: Flavor, node: str, language: str) -> tuple[str, str]:
+    if flavor.ros1:
+        return (f"{node}.py" if language == "python" else node, f"$(find robot)/config/{node}.yaml")
+    return (node, f"$(find-pkg-share robot)/config/{node}.yaml")
+
+
+def build_entries(project: Path, flavor: Flavor, managed_only: bool = False) -> set[str]:
+    """What the build file installs, as `python:<node>` / `cpp:<node>`, read from its text
+    (with `managed_only`, from the lines inside its managed blocks alone)."""
+    text = (project / flavor.build_file).read_text()
+    if managed_only:
+        text = "\n".join(managed_lines(text)) + "\n"
+    entries = set()
+    if flavor.name == "ament_python":
+        entries |= {f"python:{name}" for name, module in re.findall(r"'(\w+) = robot\.(\w+):main'", text)
+                    if name == module}
+    else:
+        # a node's target is named after it (or `${PROJECT_NAME}_<node>`); its source is src/<node>.cpp
+        entries |= {f"cpp:{name}" for name in re.findall(r"add_executable\([^\s)]+ src/(\w+)\.cpp\)", text)}
+        if flavor.ros1:
+            entries |= {f"python:{name}" for name in re.findall(r"^  scripts/(\w+)\.py$", text, re.M)}
+        else:
+            entries |= {f"python:{name}" for name in re.findall(r"RENAME (\w+)\)", text)}
+    return entries
+
+
+def config_values(project: Path, flavor: Flavor, node: str) -> dict:
+    data = yaml.safe_load((project / flavor.config_file(node)).read_text())
+    return data if flavor.ros1 else data["/**"]["ros__parameters"]
+
+
+def fresh_copy_differences(project: Path, template, tmp_path: Path, version: str = NEW_VERSION) -> list[str]:
+    """How `project` differs from a fresh copy made with its answers (`.git`, `_commit` aside)."""
+    fresh = generate_project(template, tmp_path / "fresh", user_answers(project), vcs_ref=version)
+    return tree_differences(project, fresh)
+
+
+def edit_user_file(project: Path, flavor: Flavor, node: str) -> list[str]:
+    """A line of the user's own at the end of the node's class (just before main())."""
+    path = project / flavor.user_file(node)
+    if flavor.language(node) == "cpp":
+        return append_after(path, "public:", ["  // my notes: tuned on the real robot"])
+    return replace_text(path, "\n\n\ndef main(", "\n\n    # my notes: tuned on the real robot\n\n\ndef main(")
+
+
+def node_answers(flavor: Flavor, name: str, language: str, **endpoints) -> dict:
+    node = {"name": name, **endpoints}
+    if flavor.name != "ament_python":
+        node["language"] = language
+    return node
+
+
+# ─── Adding nodes ─────────────────────────────────────────────────────────────
+
+PLANNER = {"subscribers": ["scan:sensor_msgs/msg/LaserScan:sensor_data"], "publishers": ["path:nav_msgs/msg/Path"],
+           "timers": ["0.2"], "parameters": ["horizon:double=2.0"]}
+RELAY = {"subscribers": ["chatter:std_msgs/msg/String"], "publishers": ["chatter_out:std_msgs/msg/String"]}
+
+NEW_NODES = {  # flavour -> (name, language, endpoints) of the nodes an update adds
+    "ament_python": [("planner", "python", PLANNER)],
+    "ament_cmake": [("planner", "cpp", PLANNER), ("relay", "python", RELAY)],
+    "catkin": [("planner", "cpp", PLANNER), ("relay", "python", RELAY)],
+}
+
+
+@pytest.mark.parametrize("flavor_name", FLAVORS)
+def test_add_nodes(project, current_template, tmp_path, flavor_name):
+    flavor = Flavor(flavor_name)
+    destination = project(flavor_name)
+    nodes = flavor.answers["nodes"] + [node_answers(flavor, name, language, **endpoints)
+                                       for name, language, endpoints in NEW_NODES[flavor_name]]
+
+    result = run_update(destination, {"nodes": nodes})
+    assert_clean_update(result, destination)
+
+    assert answers_of(destination)["nodes"][-1]["name"] == NEW_NODES[flavor_name][-1][0]
+    launch = launched(destination, flavor)
+    entries = build_entries(destination, flavor, managed_only=True)
+    for name, language, _ in NEW_NODES[flavor_name]:
+        class_name = name.capitalize()
+        user = (destination / flavor.user_file(name, language)).read_text()
+        base = (destination / flavor.base_file(name, language)).read_text()
+        assert (f"class {class_name}(" in user) or (f"class {class_name} : public {class_name}Base" in user)
+        assert f"{class_name}Base" in base
+        assert launch[name] == expected_launch_entry(flavor, name, language)
+        assert f"{language}:{name}" in entries, f"{name} is not built or installed by {flavor.build_file}"
+        if flavor.ros1 and language == "python":
+            assert os.access(destination / flavor.user_file(name, language), os.X_OK)
+    assert config_values(destination, flavor, "planner") == {"horizon": 2.0}
+    # the nodes that were there stay launched
+    assert {"driver", "monitor", "logger"} <= set(launch)
+
+    dependencies = dependency_names(destination / flavor.package_xml)
+    assert {"sensor_msgs", "nav_msgs"} <= dependencies
+    if flavor_name != "ament_python":
+        assert "std_msgs" in dependencies
+    if flavor_name == "ament_cmake":
+        assert "find_package(sensor_msgs REQUIRED)" in managed_lines((destination / flavor.build_file).read_text())
+    if flavor.ros1:
+        assert "  sensor_msgs" in managed_lines((destination / flavor.build_file).read_text())
+    assert "| `planner` |" in (destination / "README.md").read_text()
+
+    # An untouched package that grew equals a fresh copy made with the grown answers.
+    assert fresh_copy_differences(destination, current_template, tmp_path) == []
+
+
+# ─── Adding endpoints to existing nodes ───────────────────────────────────────
+
+
+def endpoints_for(flavor: Flavor) -> dict:
+    action = "actionlib/action/Test" if flavor.ros1 else "test_msgs/action/Fibonacci"
+    return {
+        "publishers": ["status:std_msgs/msg/String"],
+        "subscribers": ["scan:sensor_msgs/msg/LaserScan"],
+        "service_servers": ["calibrate:std_srvs/srv/Trigger"],
+        "action_servers": [f"dock:{action}"],
+        "timers": ["watchdog:1.0"],
+    }
+
+
+# What each endpoint kind puts in the base class (both languages use these names).
+ENDPOINT_CODE = {
+    "publishers": "status_publisher",
+    "subscribers": "on_scan(",
+    "service_servers": "on_calibrate_request(",
+    "action_servers": "execute_dock(",
+    "timers": "on_watchdog(",
+}
+# What an untouched user file gains: the starter overrides (the timer callback only where
+# the new timer is the node's first, i.e. monitor's).
+USER_OVERRIDES = {
+    "subscribers": "on_scan(",
+    "service_servers": "on_calibrate_request(",
+    "action_servers": "execute_dock(",
+}
+GROWN = ("driver", "monitor")  # driver: C++ in ament_cmake and catkin; monitor: Python everywhere
+
+
+def grow(nodes: list[dict], flavor: Flavor, names=GROWN) -> list[dict]:
+    for name in names:
+        node = find_node(nodes, name)
+        for kind, values in endpoints_for(flavor).items():
+            node[kind] = node.get(kind, []) + values
+    return nodes
+
+
+@pytest.mark.parametrize("edited", [True, False], ids=["edited-user-files", "untouched-user-files"])
+@pytest.mark.parametrize("flavor_name", FLAVORS)
+def test_add_every_endpoint_kind_to_existing_nodes(project, current_template, tmp_path, flavor_name, edited):
+    flavor = Flavor(flavor_name)
+    destination = project(flavor_name)
+    if edited:
+        for name in GROWN:
+            edit_user_file(destination, flavor, name)
+        commit_all(destination)
+    before = {name: (destination / flavor.user_file(name)).read_text() for name in GROWN}
+
+    result = run_update(destination, {"nodes": grow(flavor.answers["nodes"], flavor)})
+    assert_clean_update(result, destination)
+
+    missing = []
+    for name in GROWN:
+        base = (destination / flavor.base_file(name)).read_text()
+        missing += [f"{flavor.base_file(name)} lacks the {kind} code {code!r}"
+                    for kind, code in ENDPOINT_CODE.items() if code not in base]
+    assert not missing, "\n".join(missing)
+
+    dependencies = dependency_names(destination / flavor.package_xml)
+    expected = {"std_msgs", "sensor_msgs", "std_srvs"} | (
+        {"actionlib", "actionlib_msgs"} if flavor.ros1 else {"test_msgs"})
+    assert expected <= dependencies, f"package.xml lacks {expected - dependencies}"
+    if flavor_name == "ament_cmake":
+        cmake = "\n".join(managed_lines((destination / flavor.build_file).read_text()))
+        for package in ("sensor_msgs", "std_msgs", "std_srvs", "test_msgs", "rclcpp_action"):
+            assert f"find_package({package} REQUIRED)" in cmake
+        assert "${sensor_msgs_TARGETS}" in cmake
+
+    for name in GROWN:
+        user = (destination / flavor.user_file(name)).read_text()
+        refreshed_message = f"rna-template: {flavor.user_file(name)} was never edited"
+        if edited:
+            assert user == before[name], f"copier update changed the user's {flavor.user_file(name)}"
+            assert refreshed_message not in result.stdout
+        else:
+            gained = {kind: code for kind, code in USER_OVERRIDES.items() if code not in user}
+            assert not gained, f"untouched {flavor.user_file(name)} did not gain {gained}\n{user}"
+            assert refreshed_message in result.stdout, result
+    if not edited:
+        assert "on_watchdog(" in (destination / flavor.user_file("monitor")).read_text()
+        assert fresh_copy_differences(destination, current_template, tmp_path) == []
+
+
+# ─── Changing a parameter's default ───────────────────────────────────────────
+
+
+@pytest.mark.parametrize("flavor_name", FLAVORS)
+def test_change_parameter_defaults(project, flavor_name):
+    flavor = Flavor(flavor_name)
+    destination = project(flavor_name)
+    # The user tunes a parameter whose default does not change; it must stay tuned.
+    tuned = replace_text(destination / flavor.config_file("driver"), "max_speed: 0.5", "max_speed: 0.8")
+    commit_all(destination, "tune max_speed")
+
+    nodes = flavor.answers["nodes"]
+    driver, monitor = find_node(nodes, "driver"), find_node(nodes, "monitor")
+    driver["parameters"][0]["default"] = 2.5
+    monitor["parameters"] = ["limit:int=7"]
+    result = run_update(destination, {"nodes": nodes})
+    assert_clean_update(result, destination)
+
+    assert config_values(destination, flavor, "driver") == {"gain": 2.5, "frame_id": "base_link", "max_speed": 0.8}
+    assert config_values(destination, flavor, "monitor") == {"limit": 7}
+    assert missing_block(destination / flavor.config_file("driver"), tuned) is None
+    driver_base = (destination / flavor.base_file("driver")).read_text()
+    monitor_base = (destination / flavor.base_file("monitor")).read_text()
+    assert re.search(r"\"gain\",[^;]*\b2\.5\b|'gain', 2\.5", driver_base), driver_base
+    assert not re.search(r"\"gain\",[^;]*\b1\.0\b|'gain', 1\.0", driver_base)
+    assert re.search(r"'(~)?limit', 7\b", monitor_base), monitor_base
+
+
+# ─── Removing nodes ───────────────────────────────────────────────────────────
+
+REMOVALS = {  # id -> (flavour, the removed node whose user file was edited, the untouched one)
+    "ament_python": ("ament_python", "driver", "logger"),
+    "ament_cmake-cpp-edited": ("ament_cmake", "driver", "monitor"),
+    "ament_cmake-python-edited": ("ament_cmake", "monitor", "driver"),
+    "catkin-cpp-edited": ("catkin", "driver", "logger"),
+    "catkin-python-edited": ("catkin", "logger", "driver"),
+}
+ONLY_USED_BY = {"driver": {"nav_msgs"}, "monitor": {"std_srvs"}, "logger": {"diagnostic_msgs"}}
+
+
+@pytest.mark.parametrize("case", REMOVALS)
+def test_remove_nodes(project, case):
+    flavor_name, edited, untouched = REMOVALS[case]
+    flavor = Flavor(flavor_name)
+    destination = project(flavor_name)
+    languages = {name: flavor.language(name) for name in (edited, untouched)}
+    kept_lines = edit_user_file(destination, flavor, edited)
+    commit_all(destination)
+
+    nodes = [node for node in flavor.answers["nodes"] if node["name"] not in (edited, untouched)]
+    result = run_update(destination, {"nodes": nodes})
+    assert_clean_update(result, destination)
+
+    # The edited user file is kept, said so, and still holds the user's line.
+    edited_file = flavor.user_file(edited, languages[edited])
+    assert (destination / edited_file).is_file(), f"the user's edited {edited_file} was deleted\n{result}"
+    assert f"KEPT {edited_file}" in result.stdout, result
+    assert missing_block(destination / edited_file, kept_lines) is None
+    # The untouched one is gone like the rest of both nodes.
+    assert not (destination / flavor.user_file(untouched, languages[untouched])).exists(), result
+    for name in (edited, untouched):
+        assert not (destination / flavor.base_file(name, languages[name])).exists()
+        assert not (destination / flavor.config_file(name)).exists()
+    remaining = {node["name"] for node in nodes}
+    assert set(launched(destination, flavor)) == remaining
+    assert build_entries(destination, flavor) == {f"{flavor.language(n)}:{n}" for n in remaining}
+    dependencies = dependency_names(destination / flavor.package_xml)
+    gone = ONLY_USED_BY[edited] | ONLY_USED_BY[untouched]
+    assert not gone & dependencies, f"package.xml still depends on {gone & dependencies}"
+    if flavor_name == "ament_cmake":
+        cmake = (destination / flavor.build_file).read_text()
+        for package in gone:
+            assert f"find_package({package} REQUIRED)" not in cmake
+        if "monitor" in (edited, untouched):  # the only Python node
+            assert "ament_python_install_package" not in cmake
+            assert "rclpy" not in dependencies
+    readme = (destination / "README.md").read_text()
+    for name in (edited, untouched):
+        assert f"| `{name}` |" not in readme
+
+
+# ─── Template upgrade 0.1.0 -> 0.2.0 ──────────────────────────────────────────
+
+
+def lived_in_edits(project: Path, flavor: Flavor) -> dict[str, list[str]]:
+    """A few edits of every kind of file: user code, a build line, a dependency, a tuned value."""
+    kept = {}
+    driver = flavor.user_file("driver")
+    kept[driver] = edit_user_file(project, flavor, "driver")
+    kept[flavor.package_xml] = append_after(project / flavor.package_xml,
+                                            "<!-- END rna-template: add your own dependencies below -->",
+                                            ["  <depend>tf2_ros</depend>"])
+    if flavor.name == "ament_python":
+        kept[flavor.build_file] = append_after(project / flavor.build_file,
+                                               "# END rna-template: add your own executables below",
+                                               ["            'calibrate = robot.calibrate:main',"])
+    else:
+        kept[flavor.build_file] = append_after(
+            project / flavor.build_file, "# END rna-template: add your own targets below",
+            ["install(PROGRAMS tools/calibrate.sh DESTINATION share/${PROJECT_NAME})"])
+    kept[flavor.config_file("driver")] = replace_text(project / flavor.config_file("driver"),
+                                                      "max_speed: 0.5", "max_speed: 0.8")
+    commit_all(project, "lived-in edits")
+    return kept
+
+
+@pytest.mark.parametrize("flavor_name", FLAVORS)
+def test_upgrade_from_the_previous_release_keeps_user_edits(project, flavor_name):
+    flavor = Flavor(flavor_name)
+    destination = project(flavor_name, OLD_VERSION)
+    assert answers_of(destination)["_commit"] == OLD_VERSION
+    kept = lived_in_edits(destination, flavor)
+    user_file_before = (destination / flavor.user_file("driver")).read_text()
+
+    result = run_update(destination, vcs_ref=NEW_VERSION)
+    assert_clean_update(result, destination)
+
+    assert answers_of(destination)["_commit"] == NEW_VERSION
+    assert (destination / flavor.user_file("driver")).read_text() == user_file_before
+    missing = [problem for path, lines in kept.items() if (problem := missing_block(destination / path, lines))]
+    assert not missing, "\n".join(missing)
+    for path, lines in kept.items():  # the user's lines stay outside the managed blocks
+        if path.endswith(("package.xml", "setup.py", "CMakeLists.txt")):
+            assert lines[0] in unmanaged_lines((destination / path).read_text()), path
+
+
+def every_endpoint(ros1: bool) -> dict:
+    action = "actionlib/action/Test" if ros1 else "test_msgs/action/Fibonacci"
+    return {
+        "publishers": ["cmd_vel:geometry_msgs/msg/Twist", "chatter:std_msgs/msg/String"],
+        "subscribers": ["odom:nav_msgs/msg/Odometry", "/camera/depth/points:sensor_msgs/msg/PointCloud2:sensor_data"],
+        "service_servers": ["reset:std_srvs/srv/Trigger", "enable:std_srvs/srv/SetBool"],
+        "service_clients": ["arm:std_srvs/srv/SetBool"],
+        "action_servers": [f"fibonacci:{action}"],
+        "action_clients": [f"compute:{action}"],
+        "timers": ["control_loop:0.05", "slow:2"],
+        "parameters": [
+            {"name": "gain", "type": "double", "default": 2.0, "description": "Proportional gain",
+             "range": [0.0, 10.0]},
+            "frame_id:string=base_link", "gains:double[]=[1.0, 2.5]",
+            {"name": "retries", "default": 3, "read_only": True, "range": [0, 10, 1]}, "verbose=true",
+        ],
+    }
+
+
+# Packages that use every kind of endpoint and parameter (and lifecycle nodes and components
+# in ROS 2), so that an upgrade has to carry every part of the template.
+EVERYTHING = {
+    "ament_python": {"package_name": "robot", "build_type": "ament_python", "nodes": [
+        {"name": "brain", **every_endpoint(False)},
+        {"name": "supervisor", "lifecycle": True, **every_endpoint(False)}]},
+    "ament_cmake": {"package_name": "robot", "build_type": "ament_cmake", "nodes": [
+        {"name": "driver", "language": "cpp", **every_endpoint(False)},
+        {"name": "monitor", "language": "python", **every_endpoint(False)},
+        {"name": "supervisor", "language": "cpp", "lifecycle": True, **every_endpoint(False)},
+        {"name": "camera", "component": True, "publishers": ["image:sensor_msgs/msg/Image:sensor_data"],
+         "timers": [0.033]}]},
+    "catkin": {"package_name": "robot", "ros_distro": "noetic", "nodes": [
+        {"name": "driver", "language": "cpp", **every_endpoint(True)},
+        {"name": "monitor", "language": "python", **every_endpoint(True)}]},
+}
+
+
+@pytest.mark.parametrize("package", ["base", "every-endpoint"])
+@pytest.mark.parametrize("flavor_name", FLAVORS)
+def test_upgrade_parity_with_a_fresh_copy(project, release_template, tmp_path, flavor_name, package):
+    """An untouched package made by 0.1.0 and updated to 0.2.0 equals a fresh 0.2.0 copy."""
+    if package == "base":
+        destination = project(flavor_name, OLD_VERSION)
+    else:
+        destination = generate_project(release_template, tmp_path / "project", EVERYTHING[flavor_name],
+                                       vcs_ref=OLD_VERSION)
+
+    result = run_update(destination)
+    assert_clean_update(result, destination)
+
+    assert answers_of(destination)["_commit"] == NEW_VERSION
+    differences = fresh_copy_differences(destination, release_template, tmp_path, NEW_VERSION)
+    assert differences == [], "\n".join(differences) + f"\n{result}"
