@@ -33,7 +33,6 @@ import yaml
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from rna import build_package  # noqa: E402 - the template's own package, next to this file
 
-ANSWERS = ".copier-answers.yml"
 MARKERS = ("<<<<<<< before updating", ">>>>>>> after updating")
 
 
@@ -67,9 +66,9 @@ def user_files(answers: dict) -> set[str]:
         return set()
 
 
-def main(project: Path, template: str) -> int:
-    old_answers = yaml.safe_load(committed(project, ANSWERS) or "{}") or {}
-    new_answers = yaml.safe_load((project / ANSWERS).read_text())
+def main(project: Path, template: str, answers_file: str) -> int:
+    old_answers = yaml.safe_load(committed(project, answers_file) or "{}") or {}
+    new_answers = yaml.safe_load((project / answers_file).read_text())
     kept, refreshed = [], []
     with tempfile.TemporaryDirectory(prefix="rna-update-") as scratch:
         old = render(template, old_answers["_commit"], old_answers, Path(scratch, "old"))
@@ -117,4 +116,4 @@ def main(project: Path, template: str) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main(Path(sys.argv[1]), sys.argv[2]))
+    sys.exit(main(Path(sys.argv[1]), sys.argv[2], sys.argv[3]))

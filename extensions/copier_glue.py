@@ -77,6 +77,24 @@ def _found(destination: str) -> tuple[str, ...]:
     return tuple(rna.workspace.find_interfaces(Path(destination)))
 
 
+@pass_context
+def existing_package(context) -> dict | None:
+    """The package already in the destination (its package.xml), if any: a node goes into it."""
+    destination = (context.get("_copier_conf") or {}).get("dst_path")
+    return rna.workspace.read_package(Path(destination)) if destination is not None else None
+
+
+@pass_context
+def answers_file_name(context) -> str:
+    """`.copier-answers.yml`, or for a node added to a package `.copier-answers.rna-<node>.yml`."""
+    if context.get("target") != "node":
+        return ".copier-answers.yml"
+    nodes = context.get("nodes") or [{}]
+    first = nodes[0] if isinstance(nodes, list) and nodes else {}
+    name = first.get("name") if isinstance(first, dict) else first
+    return f".copier-answers.rna-{name or context.get('node_name') or 'node'}.yml"
+
+
 def git_config(key: str) -> str:
     """The user's git setting (user.name, user.email) as a default answer, or ""."""
     try:
@@ -92,7 +110,8 @@ class RnaExtension(Extension):
 
     def __init__(self, environment):
         super().__init__(environment)
-        environment.globals.update(answer_error=answer_error, describe_nodes=describe_nodes,
+        environment.globals.update(answer_error=answer_error, answers_file_name=answers_file_name,
+                                   describe_nodes=describe_nodes, existing_package=existing_package,
                                    found_interfaces=found_interfaces, git_config=git_config,
                                    login_name=getpass.getuser)
         code = rna.code
@@ -131,10 +150,27 @@ class PackageContext(ContextHook):
         if str(context.get("_copier_phase")) != "render":
             return
         answers = {key: context.get(key) for key in (*rna.model.QUESTIONS, "copyright_year")}
-        key = json.dumps(answers, sort_keys=True, default=str)
+        key = json.dumps([answers, str((context.get('_copier_conf') or {}).get('dst_path'))],
+                         sort_keys=True, default=str)
         if key not in _models:
             try:
                 _models[key] = rna.build_package(answers)
             except rna.AnswerError as error:
                 raise UserMessageError(f"rna-template: {error}") from None
+            _refuse_to_overwrite(_models[key], context)
         context["package"] = _models[key]
+
+
+def _refuse_to_overwrite(package, context) -> None:
+    """A node added to an existing package must not land on files already there."""
+    destination = (context.get("_copier_conf") or {}).get("dst_path")
+    if package.target != "node" or destination is None:
+        return
+    destination = Path(destination)
+    if (destination / answers_file_name(context)).exists():
+        return  # an update of the node
+    node = package.nodes[0]
+    for path in (node.user_file, node.base_file, f"config/{node.name}.yaml"):
+        if (destination / path).exists():
+            raise UserMessageError(f"rna-template: invalid answer to 'nodes': {path} already exists in "
+                                   f"{package.name}; choose another node name (nothing was written)")

@@ -90,6 +90,14 @@ def generate(template: Path, destination: Path, answers: dict | None = None, **k
                            unsafe=True, quiet=True, vcs_ref="HEAD", **kwargs)
 
 
+def add_node(template: Path, package: Path, answers: dict):
+    """`copier copy` into an existing package: only the node's answers, the rest from its package.xml."""
+    import copier
+
+    copier.run_copy(str(template), str(package), data={"copyright_year": 2026, **answers}, defaults=True,
+                    unsafe=True, quiet=True, vcs_ref="HEAD")
+
+
 @pytest.fixture
 def make_package(template_dir, tmp_path):
     """Generate a package from answers; returns the destination folder."""

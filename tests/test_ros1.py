@@ -15,7 +15,8 @@ from pathlib import Path
 
 import pytest
 
-from conftest import generate, unavailable
+import existing_packages
+from conftest import add_node, generate, unavailable
 from support import ros1 as ros1_support
 from support.processes import NodeProcess, assert_clean_exit, started
 from test_generate import VARIANTS
@@ -112,6 +113,9 @@ def catkin_ws(ros1, template_dir, tmp_path_factory) -> CatkinWorkspace:
     generate(template_dir, path / "src" / "everything", {"package_name": "everything", **VARIANTS["ros1"]})
     generate(template_dir, path / "src" / "tracker", TRACKER)
     generate(template_dir, path / "src" / "tracker_same", TRACKER_SAME)
+    # A C++ node added to a catkin package written by hand.
+    add_node(template_dir, existing_packages.catkin(path / "src" / "hand_rover"),
+             {"node_name": "listener", "node_subscribers": "chatter:std_msgs/msg/String"})
     config = path / "src" / "bringup" / "bringup" / "config" / "talker.yaml"
     config.write_text(config.read_text().replace("rate: 1.5", "rate: 2.5"))  # tuned by a user
     workspace = CatkinWorkspace(path, ros1, tmp_path_factory.mktemp("ros1_logs"))
@@ -151,6 +155,17 @@ def test_custom_interfaces_between_languages(catkin_ws, package, sender, receive
                 assert_clean_exit(process, process.interrupt())
 
 
+def test_node_added_to_a_hand_written_package_runs(catkin_ws):
+    with catkin_ws.network("hand_rover") as (prefix, env):
+        talker = NodeProcess([*prefix, str(catkin_ws.path / "devel" / "lib" / "hand_rover" / "hand_talker")],
+                             env=env, log_path=catkin_ws.logs / "hand_rover" / "talker.log")
+        listener = catkin_ws.node(prefix, env, "hand_rover", "listener", log=catkin_ws.logs / "hand_rover" / "l.log")
+        with started(talker, listener):
+            listener.wait_for(r'I heard: "Hello by hand"', timeout=30)
+            for process in (listener, talker):
+                assert_clean_exit(process, process.interrupt())
+
+
 def test_parameters_come_from_the_command_line(catkin_ws):
     with catkin_ws.network("params_cli") as (prefix, env):
         for server in ("cpp_server", "py_server"):
@@ -165,7 +180,7 @@ def test_parameters_come_from_the_command_line(catkin_ws):
 
 def test_generated_packages_pass_catkin_lint(catkin_ws):
     for package in ("pairs/pairs", "bringup/bringup", "everything/everything", "tracker/tracker",
-                    "tracker/tracker_interfaces", "tracker_same/tracker_same"):
+                    "tracker/tracker_interfaces", "tracker_same/tracker_same", "hand_rover"):
         returncode, output = catkin_ws.ros1.catkin_lint(
             catkin_ws.path / "src" / package, catkin_ws.ros1.env(ros1_support.free_port(), catkin_ws.logs))
         assert returncode == 0, output

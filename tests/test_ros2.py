@@ -16,7 +16,8 @@ from pathlib import Path
 
 import pytest
 
-from conftest import generate, unavailable
+import existing_packages
+from conftest import add_node, generate, unavailable
 from support import ros2 as ros2_support
 from support.processes import NodeProcess, assert_clean_exit, started
 from test_generate import VARIANTS
@@ -113,6 +114,11 @@ def workspace(ros2, template_dir, tmp_path_factory) -> Workspace:
     generate(template_dir, path / "src" / "robot_beacons", CMAKE_PYTHON)
     generate(template_dir, path / "src" / "tracker", TRACKER)
     generate(template_dir, path / "src" / "tracker_same", TRACKER_SAME)
+    # Nodes added to packages written by hand (an ament_python and an ament_cmake one).
+    add_node(template_dir, existing_packages.ament_python(path / "src" / "hand_robot"),
+             {"node_name": "listener", "node_subscribers": "chatter:std_msgs/msg/String"})
+    add_node(template_dir, existing_packages.ament_cmake(path / "src" / "hand_driver"),
+             {"node_name": "echo", "node_language": "python", "node_subscribers": "chatter:std_msgs/msg/String"})
     # A user tunes a parameter in the generated config file.
     config = path / "src" / "robot_services" / "robot_services" / "config" / "server.yaml"
     config.write_text(config.read_text().replace("rate: 1.5", "rate: 2.5"))
@@ -224,6 +230,14 @@ def test_custom_message_service_and_action_between_nodes(workspace, package, int
         detector.wait_for("Feedback on the approach goal")
         detector.wait_for("The approach goal succeeded")
         stop_all(detector, mover)
+
+
+def test_nodes_added_to_hand_written_packages_run(workspace):
+    with started(workspace.node("hand_robot", "hand_talker"), workspace.node("hand_robot", "listener"),
+                 workspace.node("hand_driver", "echo")) as (talker, listener, echo):
+        listener.wait_for(r'I heard: "Hello by hand: \d+"')
+        echo.wait_for(r'I heard: "Hello by hand: \d+"')
+        stop_all(listener, echo, talker)
 
 
 def test_ament_cmake_python_node_runs(workspace):

@@ -425,6 +425,12 @@ class Package:
     nodes: tuple[Node, ...] = field(default_factory=tuple)
     definitions: tuple[Definition, ...] = ()
     interfaces_location: str = "separate"  # or "package": this package builds them
+    target: str = "package"  # or "node": one node added to a package the template did not make
+
+    @property
+    def dir(self) -> str:
+        """The package folder within the destination: the destination itself for a node."""
+        return "." if self.target == "node" else self.name
 
     # --- interfaces this package defines
 
@@ -467,7 +473,8 @@ class Package:
     @property
     def user_files(self) -> tuple[str, ...]:
         """Files the user owns, relative to the destination: created once, never rewritten."""
-        return tuple(f"{self.name}/{node.user_file}" for node in self.nodes)
+        prefix = "" if self.target == "node" else f"{self.name}/"
+        return tuple(prefix + node.user_file for node in self.nodes)
 
     @property
     def cpp_nodes(self) -> tuple[Node, ...]:
@@ -901,8 +908,16 @@ def _check_question(question: str, answers: Mapping) -> None:
         if value == "package" and answers.get("build_type") == "ament_python":
             raise ValueError("an ament_python package cannot build interfaces: keep them separate")
     elif question == "nodes":
-        parse_nodes(value, package=answers.get("package_name") or "pkg",
-                    build_type=answers.get("build_type"), types=parse_types(answers)[1])
+        nodes = parse_nodes(value, package=answers.get("package_name") or "pkg",
+                            build_type=answers.get("build_type"), types=parse_types(answers)[1])
+        if answers.get("target") == "node" and len(nodes) != 1:
+            raise ValueError("a node added to an existing package is one node: give exactly one")
+    elif question == "target":
+        if value not in (None, "package", "node"):
+            raise ValueError(f"'{value}' is not package or node")
+        if value == "node" and answers.get("interfaces"):
+            raise ValueError("a node added to an existing package cannot define interfaces: name "
+                             "existing ones, or generate a package")
     elif question == "node_name":
         error = names.node_name_error(value)
         if error:
@@ -949,11 +964,15 @@ def describe_nodes(answers: Mapping) -> str:
 
 
 QUESTIONS = ("package_name", "description", "maintainer", "maintainer_email", "license",
-             "copyright_holder", "ros_distro", "build_type", "interfaces", "interfaces_location", "nodes")
+             "copyright_holder", "ros_distro", "build_type", "target", "interfaces", "interfaces_location",
+             "nodes")
 
 
 def build_package(answers: Mapping) -> Package:
     """Check every answer and build the model; raises AnswerError on the first broken rule."""
+    answers = dict(answers)
+    if ros_generation(answers.get("ros_distro")) == 1 and not answers.get("build_type"):
+        answers["build_type"] = "catkin"  # not asked, so not in the answers file either
     for question in QUESTIONS:
         try:
             _check_question(question, answers)
@@ -977,4 +996,5 @@ def build_package(answers: Mapping) -> Package:
                           build_type=answers["build_type"], types=types),
         definitions=definitions,
         interfaces_location=answers.get("interfaces_location") or "separate",
+        target=answers.get("target") or "package",
     )

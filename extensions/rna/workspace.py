@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import os
 import re
+import xml.etree.ElementTree as ET
 from pathlib import Path
 
 _SKIP = {"build", "install", "log", "devel", "node_modules", "__pycache__"}
@@ -58,3 +59,31 @@ def find_interfaces(destination: Path, limit: int = 200) -> list[str]:
                     if len(found) >= limit:
                         return sorted(found)
     return sorted(found)
+
+
+def read_package(folder: Path) -> dict | None:
+    """What a node added to the package in `folder` needs from its package.xml, or None."""
+    manifest = Path(folder) / "package.xml"
+    if not manifest.is_file():
+        return None
+    try:
+        root = ET.parse(manifest).getroot()
+    except (ET.ParseError, OSError):
+        return None
+
+    def text(tag: str) -> str:
+        element = root.find(tag)
+        return (element.text or "").strip() if element is not None else ""
+
+    buildtools = {element.text.strip() for element in root.iter("buildtool_depend") if element.text}
+    build_type = root.findtext("export/build_type") or ("catkin" if "catkin" in buildtools else "ament_cmake")
+    maintainer = root.find("maintainer")
+    return {
+        "name": text("name"),
+        "description": " ".join(text("description").split()),
+        "license": text("license"),
+        "maintainer": (maintainer.text or "").strip() if maintainer is not None else "",
+        "maintainer_email": maintainer.get("email", "") if maintainer is not None else "",
+        "build_type": build_type.strip(),
+        "ros_distro": "noetic" if build_type.strip() == "catkin" else "jazzy",
+    }

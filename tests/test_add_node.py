@@ -1,0 +1,132 @@
+"""One node added to a package the template did not make: its files, and the smallest build-file edits."""
+
+from __future__ import annotations
+
+import filecmp
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import yaml
+from catkin_pkg.package import parse_package
+
+import existing_packages
+from conftest import FIXED_ANSWERS, add_node
+from rna import build_package, integrate
+
+COPIER = str(Path(sys.executable).with_name("copier"))
+
+LISTENER = {"node_name": "listener", "node_subscribers": "chatter:std_msgs/msg/String",
+            "node_publishers": "heard:std_msgs/msg/Int32", "node_timers": "1.0"}
+
+
+def snapshot(folder: Path) -> dict[str, str]:
+    return {str(p.relative_to(folder)): p.read_text() for p in folder.rglob("*") if p.is_file()}
+
+
+
+
+
+@pytest.mark.parametrize(
+    ("make", "language", "user_file", "base_file"),
+    [
+        (existing_packages.ament_python, "python", "hand_robot/listener.py", "hand_robot/listener_base.py"),
+        (existing_packages.ament_cmake, "cpp", "src/listener.cpp", "include/hand_driver/listener_base.hpp"),
+        (existing_packages.ament_cmake, "python", "hand_driver/listener.py", "hand_driver/listener_base.py"),
+        (existing_packages.catkin, "cpp", "src/listener.cpp", "include/hand_rover/listener_base.h"),
+    ],
+)
+def test_node_lands_in_the_package_with_only_its_own_files(template_dir, tmp_path, make, language, user_file,
+                                                           base_file):
+    package = make(tmp_path / "pkg")
+    before = snapshot(package)
+    add_node(template_dir, package, {**LISTENER, "node_language": language})
+    after = snapshot(package)
+
+    answers = yaml.safe_load((package / ".copier-answers.rna-listener.yml").read_text())
+    assert answers["target"] == "node"
+    assert answers["package_name"] == parse_package(str(package / "package.xml")).name
+    assert answers["maintainer"] == "Grace Hopper"  # read from the package.xml
+    new = set(after) - set(before)
+    assert {user_file, base_file, "config/listener.yaml", ".copier-answers.rna-listener.yml"} <= new
+    assert not new & {"README.md", "LICENSE", "setup.cfg"} and not any(p.startswith(("launch", "test")) for p in new)
+    for path, text in before.items():  # the user's files: unchanged but for the node's blocks
+        if after[path] != text:
+            assert path in ("package.xml", "CMakeLists.txt", "setup.py"), path
+            outside = [line for line in after[path].splitlines()
+                       if line.strip() and line not in text.splitlines()]
+            assert all("listener" in after[path] for _ in outside)
+    manifest = parse_package(str(package / "package.xml"))
+    manifest.validate()
+    declared = {d.name for d in manifest.build_depends + manifest.exec_depends}
+    assert "std_msgs" in declared
+    assert ("rclpy" if language == "python" and "ament" in str(make) else "std_msgs") in declared
+
+
+def test_build_file_edits_are_idempotent_blocks(tmp_path):
+    answers = {**FIXED_ANSWERS, "package_name": "hand_driver", "description": "d", "license": "MIT",
+               "ros_distro": "jazzy", "build_type": "ament_cmake", "target": "node",
+               "nodes": [{"name": "listener", "subscribers": ["chatter:std_msgs/msg/String"]}]}
+    package = existing_packages.ament_cmake(tmp_path / "pkg")
+    model = build_package(answers)
+    cmake = (package / "CMakeLists.txt").read_text()
+    once, explained = integrate.ament_cmake_lists(cmake, model)
+    twice, _ = integrate.ament_cmake_lists(once, model)
+    assert once == twice and explained == ["CMakeLists.txt: builds and installs listener and config/listener.yaml"]
+    assert once.index("# BEGIN rna-template: node listener") < once.index("if(BUILD_TESTING)")
+    assert "target_link_libraries(listener PRIVATE rclcpp::rclcpp ${std_msgs_TARGETS})" in once
+    grown = build_package({**answers, "nodes": [{"name": "listener", "subscribers": ["chatter:std_msgs/msg/String"],
+                                                  "publishers": ["pose:geometry_msgs/msg/Pose"]}]})
+    regrown, _ = integrate.ament_cmake_lists(once, grown)
+    assert regrown.count("BEGIN rna-template: node listener") == 1
+    assert "find_package(geometry_msgs REQUIRED)" in regrown
+    xml, explained = integrate.package_xml((package / "package.xml").read_text(), grown)
+    assert explained == ["package.xml: declares geometry_msgs (depend)", "package.xml: declares std_msgs (depend)"]
+    assert integrate.package_xml(xml, grown)[0] == xml
+
+
+def test_catkin_components_are_added_to_find_package(tmp_path):
+    package = existing_packages.catkin(tmp_path / "pkg")
+    model = build_package({**FIXED_ANSWERS, "package_name": "hand_rover", "description": "d", "license": "MIT",
+                           "ros_distro": "noetic", "build_type": "catkin", "target": "node",
+                           "nodes": [{"name": "listener", "subscribers": ["odom:nav_msgs/msg/Odometry"]}]})
+    text, explained = integrate.catkin_cmake_lists((package / "CMakeLists.txt").read_text(), model)
+    assert "find_package(catkin REQUIRED COMPONENTS\n  nav_msgs\n  roscpp\n  std_msgs\n)" in text
+    assert explained[0] == "CMakeLists.txt: find_package(catkin) also finds nav_msgs"
+    python = build_package({**FIXED_ANSWERS, "package_name": "hand_rover", "description": "d", "license": "MIT",
+                            "ros_distro": "noetic", "build_type": "catkin", "target": "node",
+                            "nodes": [{"name": "listener", "language": "python"}]})
+    with pytest.raises(ValueError, match="catkin_python_setup"):
+        integrate.catkin_cmake_lists(text, python)
+
+
+def test_a_node_never_lands_on_an_existing_file(template_dir, tmp_path):
+    package = existing_packages.ament_cmake(tmp_path / "pkg")
+    (package / "config").mkdir()
+    (package / "config" / "listener.yaml").write_text("mine: 1\n")
+    before = snapshot(package)
+    data = [f"--data={key}={value}" for key, value in {**LISTENER, "node_language": "cpp"}.items()]
+    result = subprocess.run([COPIER, "copy", "--trust", "--defaults", "--vcs-ref=HEAD", *data, str(template_dir),
+                             str(package)], capture_output=True, text=True, stdin=subprocess.DEVNULL, timeout=120)
+    assert result.returncode == 1
+    assert "config/listener.yaml already exists in hand_driver; choose another node name" in result.stderr
+    assert "Traceback" not in result.stderr
+    assert snapshot(package) == before
+
+
+def test_a_build_file_without_its_anchor_is_reported(template_dir, tmp_path):
+    package = existing_packages.catkin(tmp_path / "pkg")
+    result = subprocess.run([COPIER, "copy", "--trust", "--defaults", "--vcs-ref=HEAD", "--data=node_language=python",
+                             "--data=node_name=watcher", str(template_dir), str(package)],
+                            capture_output=True, text=True, stdin=subprocess.DEVNULL, timeout=120)
+    assert result.returncode != 0
+    assert "could not add the watcher node to CMakeLists.txt" in result.stderr
+    assert "catkin_python_setup" in result.stderr
+
+
+def test_the_package_mode_is_unchanged_for_a_fresh_destination(template_dir, tmp_path):
+    generate(template_dir, tmp_path / "fresh")
+    assert (tmp_path / "fresh" / ".copier-answers.yml").is_file()
+    assert yaml.safe_load((tmp_path / "fresh" / ".copier-answers.yml").read_text())["target"] == "package"
+    assert filecmp.cmp(tmp_path / "fresh" / "fresh" / "package.xml", tmp_path / "fresh" / "fresh" / "package.xml")
