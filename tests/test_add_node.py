@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import filecmp
 import subprocess
 import sys
 from pathlib import Path
@@ -12,7 +11,7 @@ import yaml
 from catkin_pkg.package import parse_package
 
 import existing_packages
-from conftest import FIXED_ANSWERS, add_node
+from conftest import FIXED_ANSWERS, add_node, generate
 from rna import build_package, integrate
 
 COPIER = str(Path(sys.executable).with_name("copier"))
@@ -125,8 +124,39 @@ def test_a_build_file_without_its_anchor_is_reported(template_dir, tmp_path):
     assert "catkin_python_setup" in result.stderr
 
 
-def test_the_package_mode_is_unchanged_for_a_fresh_destination(template_dir, tmp_path):
+def test_a_destination_without_a_package_gets_a_package(template_dir, tmp_path):
     generate(template_dir, tmp_path / "fresh")
-    assert (tmp_path / "fresh" / ".copier-answers.yml").is_file()
     assert yaml.safe_load((tmp_path / "fresh" / ".copier-answers.yml").read_text())["target"] == "package"
-    assert filecmp.cmp(tmp_path / "fresh" / "fresh" / "package.xml", tmp_path / "fresh" / "fresh" / "package.xml")
+    assert (tmp_path / "fresh" / "fresh" / "package.xml").is_file()
+    assert not list(tmp_path.glob("fresh/.copier-answers.rna-*"))
+
+
+def _git(folder: Path, *args: str) -> None:
+    subprocess.run(["git", "-c", "user.name=t", "-c", "user.email=t@example.com", *args], cwd=folder, check=True,
+                   capture_output=True)
+
+
+@pytest.mark.update
+def test_the_added_node_grows_with_copier_update(template_dir, tmp_path):
+    package = existing_packages.ament_cmake(tmp_path / "pkg")
+    _git(package, "init", "-q")
+    _git(package, "add", "-A")
+    _git(package, "commit", "-qm", "mine")
+    add_node(template_dir, package, {**LISTENER, "node_language": "cpp"})
+    (package / "src" / "listener.cpp").write_text((package / "src" / "listener.cpp").read_text() + "// my code\n")
+    cmake_before = (package / "CMakeLists.txt").read_text()
+    _git(package, "add", "-A")
+    _git(package, "commit", "-qm", "the listener node, edited")
+
+    grown = "[{name: listener, subscribers: [chatter:std_msgs/msg/String], publishers: [pose:geometry_msgs/msg/Pose]}]"
+    result = subprocess.run([COPIER, "update", "--trust", "--defaults", "--answers-file",
+                             ".copier-answers.rna-listener.yml", f"--data=nodes={grown}"],
+                            cwd=package, capture_output=True, text=True, stdin=subprocess.DEVNULL, timeout=300)
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert (package / "src" / "listener.cpp").read_text().endswith("// my code\n")
+    assert "pose_publisher_" in (package / "include" / "hand_driver" / "listener_base.hpp").read_text()
+    cmake = (package / "CMakeLists.txt").read_text()
+    assert "find_package(geometry_msgs REQUIRED)" in cmake and cmake.count("BEGIN rna-template: node listener") == 1
+    outside = [line for line in cmake_before.splitlines() if "listener" not in line and "find_package" not in line]
+    assert all(line in cmake.splitlines() for line in outside)
+    assert "<depend>geometry_msgs</depend>" in (package / "package.xml").read_text()

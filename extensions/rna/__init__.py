@@ -4,7 +4,7 @@ Everything here is plain Python without Copier, so it is unit-tested on its own;
 `extensions/copier_glue.py` exposes it to the templates.
 """
 
-from . import code, integrate, names, workspace
+from . import code, configs, integrate, names, workspace
 from .model import AnswerError, Package, build_package, question_error, split_list
 
-__all__ = ["code", "integrate", "names", "workspace", "AnswerError", "Package", "build_package", "question_error", "split_list"]
+__all__ = ["code", "configs", "integrate", "names", "workspace", "AnswerError", "Package", "build_package", "question_error", "split_list"]
