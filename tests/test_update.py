@@ -432,3 +432,35 @@ def test_upgrade_parity_with_a_fresh_copy(project, release_template, tmp_path, f
     assert answers_of(destination)["_commit"] == NEW_VERSION
     differences = fresh_copy_differences(destination, release_template, tmp_path, NEW_VERSION)
     assert differences == [], "\n".join(differences) + f"\n{result}"
+
+
+def test_migration_to_0_2_0_renames_catkin_targets_in_user_lines(project):
+    """0.2.0 names catkin C++ targets <package>_<node>; a user's own line naming the old target follows."""
+    destination = project("catkin", OLD_VERSION)
+    cmake = destination / Flavor("catkin").build_file
+    append_after(cmake, "# END rna-template: add your own targets below",
+                 ["target_compile_options(driver PRIVATE -O2)"])
+    commit_all(destination)
+    result = run_update(destination, vcs_ref=NEW_VERSION)
+    assert_clean_update(result, destination)
+    text = cmake.read_text()
+    assert "target_compile_options(${PROJECT_NAME}_driver PRIVATE -O2)" in text
+    assert "add_executable(${PROJECT_NAME}_driver src/driver.cpp)" in text
+    assert "renamed in your lines" in result.stdout
+
+
+def test_target_renaming_leaves_managed_blocks_and_other_names_alone():
+    sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "extensions"))
+    from migrate_0_2_0 import rename_targets
+
+    text = ("# BEGIN rna-template: the nodes\nadd_executable(${PROJECT_NAME}_driver src/driver.cpp)\n"
+            "# END rna-template: add your own targets below\n"
+            "target_link_libraries(driver ${Boost_LIBRARIES})\ninstall(TARGETS driver_tool DESTINATION bin)\n"
+            "install(TARGETS driver RUNTIME DESTINATION bin)\n")
+    renamed, changes = rename_targets(text, ["driver"])
+    assert "target_link_libraries(${PROJECT_NAME}_driver ${Boost_LIBRARIES})" in renamed
+    assert "install(TARGETS ${PROJECT_NAME}_driver RUNTIME" in renamed
+    assert "install(TARGETS driver_tool DESTINATION bin)" in renamed
+    assert renamed.startswith("# BEGIN rna-template: the nodes\nadd_executable(${PROJECT_NAME}_driver")
+    assert changes == ["driver -> ${PROJECT_NAME}_driver (2x)"]
+    assert rename_targets(renamed, ["driver"]) == (renamed, [])
