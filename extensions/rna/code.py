@@ -1,9 +1,11 @@
-"""Import and include blocks, ordered the way the ROS linters want them.
+"""How the generated code spells things, so that each template holds no such logic.
 
-Python: flake8-import-order's google style as configured by ament_flake8 (standard
-library first, then the rest sorted by module; a blank line between top-level
-packages, as in ros2/examples). C++: cpplint's order (C++ standard headers, then
-the rest), each group sorted.
+Import and include blocks ordered the way the ROS linters want them (Python:
+flake8-import-order's google style as ament_flake8 configures it, standard library
+first, then the rest sorted by module with a blank line between top-level packages,
+as in ros2/examples; C++: cpplint's order, standard headers then the rest), the
+ParameterDescriptor of a parameter, the sample values starter code publishes, the
+CMake targets a node links, and a few wording helpers.
 """
 
 from __future__ import annotations
@@ -182,9 +184,9 @@ def cpp_base_includes(node) -> str:
     return cpp_includes(headers)
 
 
-def cpp_node_includes(node) -> str:
-    """Includes of the user's src/<node>.cpp: what its starter code uses."""
-    headers = [f"{node.package}/{node.base_name}.hpp", "rclcpp/rclcpp.hpp", "<memory>"]
+def _starter_headers(node) -> list[str]:
+    """What the starter code of a user's C++ node uses, in both ROS generations."""
+    headers = [a.type.cpp_header for a in node.action_servers]
     if node.driver_timer:
         headers += [t.type.cpp_header for t in node.publishers]
         headers += [s.type.cpp_header for s in node.service_clients]
@@ -192,10 +194,15 @@ def cpp_node_includes(node) -> str:
         if node.publishers:
             headers.append("<cstddef>")
         if any(t.type.data_field in ("string", "int", "float") for t in node.publishers):
-            headers.append("<string>")
+            headers.append("<string>")  # std::to_string
     if any(t.type.data_field in ("int", "float") for t in node.subscribers):
         headers.append("<string>")
-    headers += [a.type.cpp_header for a in node.action_servers]
+    return headers
+
+
+def cpp_node_includes(node) -> str:
+    """Includes of the user's src/<node>.cpp: what its starter code uses."""
+    headers = [f"{node.package}/{node.base_name}.hpp", "rclcpp/rclcpp.hpp", "<memory>", *_starter_headers(node)]
     if node.component:
         headers.append("rclcpp_components/register_node_macro.hpp")
     return cpp_includes(headers)
@@ -319,19 +326,7 @@ def ros1_cpp_base_includes(node) -> str:
 
 def ros1_cpp_node_includes(node) -> str:
     """Includes of the user's src/<node>.cpp (roscpp)."""
-    headers = [f"{node.package}/{node.base_name}.h", "ros/ros.h"]
-    if node.driver_timer:
-        headers += [t.type.cpp_header for t in node.publishers]
-        headers += [s.type.cpp_header for s in node.service_clients]
-        headers += [a.type.cpp_header for a in node.action_clients]
-        if node.publishers:
-            headers.append("<cstddef>")
-        if any(t.type.data_field in ("string", "int", "float") for t in node.publishers):
-            headers.append("<string>")
-    if any(t.type.data_field in ("int", "float") for t in node.subscribers):
-        headers.append("<string>")
-    headers += [a.type.cpp_header for a in node.action_servers]
-    return cpp_includes(headers)
+    return cpp_includes([f"{node.package}/{node.base_name}.h", "ros/ros.h", *_starter_headers(node)])
 
 
 def python_text(text: str, column: int, indent: int, width: int = 99) -> str:

@@ -59,10 +59,6 @@ class InterfaceType:
             return f"{self.package}::{self.name}{part}"
         return f"{self.cpp_type}::{part}"
 
-    def python_part(self, part: str) -> str:
-        """The Python name of a part, as imported (ROS 1) or as attribute (ROS 2)."""
-        return f"{self.name}{part}" if self.ros == 1 else f"{self.name}.{part}"
-
     @property
     def python_module(self) -> str:
         # ROS 1 generates action types as messages (FooAction, FooGoal, ...).

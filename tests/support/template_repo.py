@@ -354,30 +354,25 @@ def missing_block(path: Path, lines: list[str]) -> str | None:
     return f"{path}: every line is there, but not in the order written: {lines}"
 
 
+def _split_managed(text: str) -> tuple[list[str], list[str]]:
+    """(lines inside BEGIN/END rna-template blocks, lines outside them), markers excluded."""
+    inside, managed, unmanaged = False, [], []
+    for line in text.splitlines():
+        if "BEGIN rna-template" in line or "END rna-template" in line:
+            inside = "BEGIN rna-template" in line
+        else:
+            (managed if inside else unmanaged).append(line)
+    return managed, unmanaged
+
+
 def managed_lines(text: str) -> list[str]:
     """The lines between `BEGIN rna-template` and `END rna-template` markers."""
-    inside, lines = False, []
-    for line in text.splitlines():
-        if "BEGIN rna-template" in line:
-            inside = True
-        elif "END rna-template" in line:
-            inside = False
-        elif inside:
-            lines.append(line)
-    return lines
+    return _split_managed(text)[0]
 
 
 def unmanaged_lines(text: str) -> list[str]:
     """The lines outside the managed blocks (the markers excluded)."""
-    inside, lines = False, []
-    for line in text.splitlines():
-        if "BEGIN rna-template" in line:
-            inside = True
-        elif "END rna-template" in line:
-            inside = False
-        elif not inside:
-            lines.append(line)
-    return lines
+    return _split_managed(text)[1]
 
 
 # ─── The base projects the update tests grow ──────────────────────────────────
