@@ -85,14 +85,19 @@ def snapshot_repo(destination: Path, version: str = NEW_VERSION) -> TemplateRepo
     return TemplateRepo(destination, (version,))
 
 
-def require_tag(tag: str, source: Path = ROOT) -> None:
-    """Fail the test, saying what to do, when this repository lacks the release tag."""
-    found = git("rev-parse", "-q", "--verify", f"refs/tags/{tag}^{{commit}}", cwd=source, check=False)
-    if found.returncode != 0:
-        pytest.fail(
-            f"the upgrade tests need the release tag {tag} in {source}, and it is missing "
-            f"(a shallow clone or a checkout without tags?): run `git fetch --tags` "
-            f"or `git fetch origin tag {tag}`", pytrace=False)
+# The commit each release tag names, for a clone that has the history but not the tags.
+RELEASE_COMMITS = {"v0.1.0": "38f734fa7da355bbf4453f1ac6b7f8e8f9e21476"}
+
+
+def release_ref(tag: str, source: Path = ROOT) -> str:
+    """The release's tag, or its commit; fail the test, saying what to do, without either."""
+    for ref in (f"refs/tags/{tag}", RELEASE_COMMITS.get(tag)):
+        if ref and git("rev-parse", "-q", "--verify", f"{ref}^{{commit}}", cwd=source, check=False).returncode == 0:
+            return ref
+    pytest.fail(
+        f"the upgrade tests need the release {tag} in {source} (tag or commit "
+        f"{RELEASE_COMMITS.get(tag)}), and it is missing (a shallow clone?): run `git fetch --tags`",
+        pytrace=False)
 
 
 def release_history_repo(destination: Path, old: str = OLD_VERSION, new: str = NEW_VERSION,
@@ -103,8 +108,8 @@ def release_history_repo(destination: Path, old: str = OLD_VERSION, new: str = N
     template/ and extensions/ are taken from: passing the snapshot repository of the same
     session makes both v0.2.0 identical even while the working tree is being edited.
     """
-    require_tag(old, source)
-    archive = subprocess.run(["git", "-C", str(source), "archive", "--format=tar", old, *TEMPLATE_ITEMS],
+    archive = subprocess.run(["git", "-C", str(source), "archive", "--format=tar", release_ref(old, source),
+                              *TEMPLATE_ITEMS],
                              capture_output=True, check=True)
     destination.mkdir(parents=True, exist_ok=True)
     with tarfile.open(fileobj=io.BytesIO(archive.stdout)) as tar:
