@@ -52,6 +52,11 @@ BROKEN = [
     (answers(nodes=[]), "nodes", "at least one node"),
     (answers(nodes="- name: [unclosed"), "nodes", "not valid YAML"),
     (answers(nodes=[{"name": "Driver"}]), "nodes", "lower_snake_case"),
+    (answers(nodes=[["driver"]]), "nodes", "each node must be a mapping"),
+    (answers(nodes=[{"language": "python"}]), "nodes", "a node name is required"),
+    (node(publishers={"topic": "chatter"}), "nodes", "publishers must be a list"),
+    (node(publishers=[["chatter", "std_msgs/msg/String"]]), "nodes", "a publisher must be 'topic:type'"),
+    (node(service_servers=[3]), "nodes", "a service server must be 'name:type'"),
     (answers(nodes=[{"name": "a"}, {"name": "a"}]), "nodes", "node 'a' and node 'a' both use the name 'a'"),
     (answers(nodes=[{"name": "a", "publisher": []}]), "nodes", "did you mean 'publishers'"),
     (node(language="rust"), "nodes", "is not cpp or python"),
@@ -77,6 +82,9 @@ BROKEN = [
     (node(action_servers=["move:nav2_msgs/srv/Move"]), "nodes", "but a action type"),
     (node(action_clients=[{"name": "~", "type": "test_msgs/action/Fibonacci"}]), "nodes", "no name"),
     (node(timers=["fast"]), "nodes", "is not a number of seconds"),
+    (node(timers=[[1]]), "nodes", "a timer must be a period in seconds"),
+    (node(publishers=[{"topic": "a", "type": "std_msgs/msg/String", "qos": True}]), "nodes",
+     "qos must be a history depth"),
     (node(timers=[0]), "nodes", "more than 0 s"),
     (node(timers=[{"name": "Fast", "period": 1}]), "nodes", "lower_snake_case"),
     (node(timers=[0.1, 0.2]), "nodes", "both use the name 'timer'"),
@@ -84,6 +92,18 @@ BROKEN = [
     (node(parameters=["rate"]), "nodes", "give a type or a default"),
     (node(parameters=["rate:complex=1"]), "nodes", "is not one of"),
     (node(parameters=["rate:int=1.5"]), "nodes", "is not a int"),
+    (node(parameters=["rate:double=[1"]), "nodes", "cannot read the default"),
+    (node(parameters=[{"name": "", "default": 1}]), "nodes", "a parameter name is required"),
+    (node(parameters=[7]), "nodes", "a parameter must be 'name:type=default'"),
+    (node(parameters=[{"name": "rate", "type": 2}]), "nodes", "is not one of"),
+    (node(parameters=[{"name": "when", "default": {"a": 1}}]), "nodes", "cannot tell the type"),
+    (node(parameters=[{"name": "gains", "default": [1, "a"]}]), "nodes", "mixes types"),
+    (node(parameters=[{"name": "r", "default": 1.0, "description": ["a"]}]), "nodes", "one line of text"),
+    (node(parameters=[{"name": "r", "default": 1.0, "range": [0]}]), "nodes", "[min, max] or [min, max, step]"),
+    (node(parameters=[{"name": "r", "default": 1.0, "range": [0, "9"]}]), "nodes", "range bounds must be numbers"),
+    (node(parameters=[{"name": "r", "default": 1.0, "range": {"min": 0, "max": 2, "step": -1}}]), "nodes",
+     "range step must not be negative"),
+    (node(parameters=[{"name": "r", "default": 1.0, "range": {"mn": 0}}]), "nodes", "did you mean 'min'"),
     (node(parameters=["gains:double[]=[]"]), "nodes", "non-empty default"),
     (node(parameters=[{"name": "r", "type": "string", "range": [0, 1]}]), "nodes", "only int and double"),
     (node(parameters=[{"name": "r", "default": 5, "range": [0, 1]}]), "nodes", "outside the range"),
@@ -184,6 +204,17 @@ def test_python_names_avoid_clashes():
 )
 def test_quick_questions_use_the_same_rules(question, value, rule):
     assert rule in question_error(question, {**VALID, question: value})
+
+
+@pytest.mark.parametrize(
+    ("question", "changes", "rule"),
+    [("target", {"target": "workspace"}, "is not package or node"),
+     ("target", {"target": "node", "interfaces": {"messages": [{"name": "A"}]}}, "cannot define interfaces"),
+     ("nodes", {"target": "node", "nodes": [{"name": "a"}, {"name": "b"}]}, "give exactly one"),
+     ("interfaces_location", {"interfaces_location": "elsewhere"}, "is not separate or package")],
+)
+def test_where_the_output_goes_has_rules_too(question, changes, rule):
+    assert rule in question_error(question, {**VALID, **changes})
 
 
 def test_several_publishers_get_a_message_variable_each():

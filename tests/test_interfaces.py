@@ -73,6 +73,9 @@ def test_fields_are_written_back_normalised(text, line):
         ("float64 x 1.0", 1, "default values are a ROS 2 feature"),
         ("wstring w", 1, "not a ROS 1 primitive"),
         ("time stamp", 2, "not a ROS 2 primitive"),
+        ("float64! x", 2, "is not a type"),
+        ("int32[] ids [1, 2", 2, "cannot read the value"),
+        ("geometry_msgs/Point p 1", 2, "only primitive types take a value"),
     ],
 )
 def test_field_rules(text, ros, rule):
@@ -96,6 +99,10 @@ def test_ros1_header_and_time_are_understood():
         ({"services": [{"name": "S", "goal": []}]}, "unknown key 'goal'"),
         ({"actions": [{"name": "Go", "goal": "float64"}]}, "write the type then the name"),
         ("messages: [", "not valid YAML"),
+        ({"messages": {"name": "A"}}, "messages must be a list"),
+        ({"services": ["SetTarget"]}, "each of services is a mapping"),
+        ({"messages": [{"name": "A", "fields": {"x": "float64"}}]}, "fields is a list of lines"),
+        ({"messages": [{"name": "A", "fields": [""]}]}, "a field is a line like"),
         ([], "a mapping with messages"),
     ],
 )
@@ -191,7 +198,8 @@ def test_separate_interfaces_package_is_generated_beside(make_package, ros_distr
 
 
 def test_same_package_interfaces(make_package):
-    destination = make_package({"package_name": "tracker", "build_type": "ament_cmake", "interfaces_location": "package",
+    destination = make_package({"package_name": "tracker", "build_type": "ament_cmake",
+                                "interfaces_location": "package",
                                 "interfaces": TRACKER_INTERFACES, "nodes": [
                                     {"name": "mover", "subscribers": ["t:Target"]},
                                     {"name": "viewer", "language": "python", "subscribers": ["t:Target"]}]})
