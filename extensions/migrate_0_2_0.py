@@ -32,11 +32,11 @@ def rename_targets(text: str, nodes: list[str]) -> tuple[str, list[str]]:
     for index, piece in enumerate(pieces):
         for node in nodes:
             pattern = re.compile(rf"(\b(?:{'|'.join(TARGET_COMMANDS)})\(\s*(?:TARGETS\s+)?)({re.escape(node)})\b")
-            piece, count = pattern.subn(rf"\g<1>${{PROJECT_NAME}}_\g<2>", piece)
+            piece, count = pattern.subn(r"\g<1>${PROJECT_NAME}_\g<2>", piece)
             if count:
                 changes.append(f"{node} -> ${{PROJECT_NAME}}_{node} ({count}x)")
         pieces[index] = piece
-    merged = pieces[0] + "".join(block + piece for block, piece in zip(blocks, pieces[1:]))
+    merged = pieces[0] + "".join(block + piece for block, piece in zip(blocks, pieces[1:], strict=True))
     return merged, changes
 
 

@@ -67,7 +67,8 @@ def ament_python(folder: Path, name: str = "hand_robot") -> Path:
     (folder / name).mkdir()
     (folder / name / "__init__.py").write_text("")
     (folder / name / "hand_talker.py").write_text(RCLPY_TALKER)
-    (folder / "setup.cfg").write_text(f"[develop]\nscript_dir=$base/lib/{name}\n[install]\ninstall_scripts=$base/lib/{name}\n")
+    (folder / "setup.cfg").write_text(
+        f"[develop]\nscript_dir=$base/lib/{name}\n[install]\ninstall_scripts=$base/lib/{name}\n")
     (folder / "setup.py").write_text(textwrap.dedent(f"""\
         from setuptools import find_packages, setup
 

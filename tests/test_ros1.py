@@ -205,7 +205,8 @@ ROS1_INTERFACES = {**TRACKER_INTERFACES, "messages": [
     {**TRACKER_INTERFACES["messages"][0], "fields": ["float64 x", "float64 y", "string frame_id",
                                                      "int32 MAX_TARGETS=5", "geometry_msgs/Point position"]},
     TRACKER_INTERFACES["messages"][1]]}
-TRACKER = {"package_name": "tracker", "ros_distro": "noetic", "description": "Custom interfaces, used from C++ and Python",
+TRACKER = {"package_name": "tracker", "ros_distro": "noetic",
+           "description": "Custom interfaces, used from C++ and Python",
            "interfaces": ROS1_INTERFACES, "nodes": _ros1_tracker_nodes()}
 TRACKER_SAME = {**TRACKER, "package_name": "tracker_same", "interfaces_location": "package"}
 

@@ -7,7 +7,9 @@ import pytest
 from rna import code, names
 from rna.interfaces import InterfaceType, parse_interface
 from rna.licenses import LICENSES
-from rna.parameters import ParameterType, coerce_default, cpp_literal, infer_type, parse_type, python_literal, yaml_literal
+from rna.parameters import (
+    ParameterType, coerce_default, cpp_literal, infer_type, parse_type, python_literal, yaml_literal,
+)
 
 
 @pytest.mark.parametrize("name", ["turtlesim", "my_robot2", "a1", "target_tracking"])

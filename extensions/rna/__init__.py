@@ -7,4 +7,5 @@ Everything here is plain Python without Copier, so it is unit-tested on its own;
 from . import code, configs, integrate, names, workspace
 from .model import AnswerError, Package, build_package, question_error, split_list
 
-__all__ = ["code", "configs", "integrate", "names", "workspace", "AnswerError", "Package", "build_package", "question_error", "split_list"]
+__all__ = ["AnswerError", "Package", "build_package", "code", "configs", "integrate", "names", "question_error",
+           "split_list", "workspace"]

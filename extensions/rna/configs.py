@@ -47,8 +47,8 @@ def merge(old_text: str, mine_text: str, new_text: str) -> str | None:
             extra[name] = value  # the user's own, or tuned before the template dropped it
     text = new_text
     for name, value in values.items():
-        text = re.sub(rf"^(\s*){re.escape(name)}:[^\n]*$", lambda m: f"{m[1]}{name}: {yaml_literal(value)}",
-                      text, count=1, flags=re.M)
+        line = f"{name}: {yaml_literal(value)}"
+        text = re.sub(rf"^(\s*){re.escape(name)}:[^\n]*$", lambda m, line=line: m[1] + line, text, count=1, flags=re.M)
     if extra:
         ros2 = "ros__parameters" in new_text
         text = text.replace("ros__parameters: {}", "ros__parameters:").rstrip("\n") + "\n"

@@ -192,10 +192,11 @@ def parse_definitions(value: object, *, package: str, ros: int) -> tuple[Definit
                 raise ValueError(f"each of {key} is a mapping with a name and its fields")
             items.append((kind, entry))
     names = [entry.get("name") for _, entry in items]
-    local_names = {name for (kind, _), name in zip(items, names) if kind == "msg" and isinstance(name, str)}
+    local_names = {name for (kind, _), name in zip(items, names, strict=True)
+                   if kind == "msg" and isinstance(name, str)}
     seen: set[str] = set()
     definitions = []
-    for (kind, entry), name in zip(items, names):
+    for (kind, entry), name in zip(items, names, strict=True):
         if not isinstance(name, str) or not is_camel_case(name):
             raise ValueError(f"interface '{name}': names are CamelCase, starting with an upper-case letter")
         label = f"{'message' if kind == 'msg' else 'service' if kind == 'srv' else 'action'} '{name}'"

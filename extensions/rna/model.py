@@ -618,7 +618,7 @@ def _parse_topic(item: object, role: str, types: Types) -> Topic:
         parts = _split_short(item, 3)
         if len(parts) < 2:
             raise ValueError(f"{role} '{item}': write it as topic:type, e.g. chatter:std_msgs/msg/String")
-        item = dict(zip(("topic", "type", "qos"), parts))
+        item = dict(zip(("topic", "type", "qos"), parts, strict=False))
     if not isinstance(item, Mapping):
         raise ValueError(f"a {role} must be 'topic:type' or a mapping with topic and type")
     _check_keys(item, ("topic", "type", "qos", "id"), role)
@@ -638,7 +638,7 @@ def _parse_service_or_action(item: object, cls: type, kind: str, role: str, type
         parts = _split_short(item, 2)
         if len(parts) < 2:
             raise ValueError(f"{what} '{item}': write it as name:type, e.g. {example}")
-        item = dict(zip(("name", "type"), parts))
+        item = dict(zip(("name", "type"), parts, strict=True))
     if not isinstance(item, Mapping):
         raise ValueError(f"a {what} must be 'name:type' or a mapping with name and type")
     _check_keys(item, ("name", "type", "id"), what)
@@ -715,7 +715,8 @@ def _parse_parameter(item: object) -> Parameter:
     read_only = item.get("read_only", False)
     if not isinstance(read_only, bool):
         raise ValueError(f"{what}: read_only must be true or false")
-    return Parameter(name, ptype, default, description.strip(), _parse_range(item.get("range"), ptype, default, what), read_only)
+    value_range = _parse_range(item.get("range"), ptype, default, what)
+    return Parameter(name, ptype, default, description.strip(), value_range, read_only)
 
 
 def _parse_range(value: object, ptype: ParameterType, default: object, what: str):
@@ -799,8 +800,10 @@ def parse_node(item: object, *, package: str, build_type: str, types: Types) -> 
             description=description.strip(),
             lifecycle=flags["lifecycle"],
             component=flags["component"],
-            publishers=tuple(_parse_topic(x, "publisher", types) for x in _as_list(item.get("publishers"), "publishers")),
-            subscribers=tuple(_parse_topic(x, "subscriber", types) for x in _as_list(item.get("subscribers"), "subscribers")),
+            publishers=tuple(_parse_topic(x, "publisher", types)
+                             for x in _as_list(item.get("publishers"), "publishers")),
+            subscribers=tuple(_parse_topic(x, "subscriber", types)
+                              for x in _as_list(item.get("subscribers"), "subscribers")),
             service_servers=tuple(_parse_service_or_action(x, Service, "srv", "server", types)
                                   for x in _as_list(item.get("service_servers"), "service_servers")),
             service_clients=tuple(_parse_service_or_action(x, Service, "srv", "client", types)

@@ -239,13 +239,13 @@ def netns_prefix() -> Iterator[list[str]]:
     """
     name = f"rna-test-{os.getpid()}-{next(_netns_names)}"
     if os.geteuid() != 0:
-        warnings.warn("not root: no private network namespace, ROS uses the shared loopback")
+        warnings.warn("not root: no private network namespace, ROS uses the shared loopback", stacklevel=2)
         yield [*SIGINT_DEFAULT]
         return
     _remove_stale_namespaces()
     added = _ip("netns", "add", name)
     if added.returncode != 0:
-        warnings.warn(f"ip netns add failed ({added.stderr.strip()}): using the shared loopback")
+        warnings.warn(f"ip netns add failed ({added.stderr.strip()}): using the shared loopback", stacklevel=2)
         yield [*SIGINT_DEFAULT]
         return
     try:

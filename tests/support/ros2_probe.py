@@ -45,7 +45,7 @@ def call(node, service_type, name, request):
 def params(node, target, names):
     response = call(node, GetParameters, f"/{target}/get_parameters", GetParameters.Request(names=names))
     values = {}
-    for name, value in zip(names, response.values):
+    for name, value in zip(names, response.values, strict=True):
         field = _VALUE_FIELDS.get(value.type)
         values[name] = list(getattr(value, field)) if field and "array" in field else (
             getattr(value, field) if field else None)
