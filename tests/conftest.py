@@ -99,14 +99,20 @@ def add_node(template: Path, package: Path, answers: dict):
 
 
 @pytest.fixture
-def make_package(template_dir, tmp_path):
-    """Generate a package from answers; returns the destination folder."""
-    counter = iter(range(1000))
+def make_package(template_dir, copie, tmp_path):
+    """Generate a package from answers with pytest-copie; returns the destination folder.
+
+    `name` names the destination folder, for the answers whose defaults come from it.
+    """
 
     def make(answers: dict | None = None, name: str | None = None) -> Path:
-        destination = tmp_path / (name or f"out{next(counter)}")
-        generate(template_dir, destination, answers)
-        return destination
+        if name:
+            generate(template_dir, tmp_path / name, answers)
+            return tmp_path / name
+        result = copie.copy(extra_answers={**FIXED_ANSWERS, **(answers or {})}, template_dir=template_dir)
+        if result.exit_code != 0:
+            raise result.exception
+        return result.project_dir
 
     return make
 
