@@ -23,8 +23,8 @@ from catkin_pkg.package import parse_package
 if "support.template_repo" not in sys.modules:  # its asserts explain themselves too
     pytest.register_assert_rewrite("support.template_repo")
 from support.template_repo import (  # noqa: E402
-    FLAVORS, NEW_VERSION, OLD_VERSION, Flavor, answers_of, append_after, commit_all, conflict_excerpts,
-    conflicted_files, find_node, generate_project, managed_lines, missing_block, replace_text, run_update,
+    FLAVORS, NEW_VERSION, OLD_VERSION, PACKAGE, Flavor, answers_of, append_after, commit_all, conflict_excerpts,
+    conflicted_files, find_node, generate_project, git, managed_lines, missing_block, replace_text, run_update,
     tree_differences, unmanaged_lines, user_answers,
 )
 
@@ -332,6 +332,76 @@ def test_remove_nodes(project, case):
     readme = (destination / "README.md").read_text()
     for name in (edited, untouched):
         assert f"| `{name}` |" not in readme
+
+
+# ─── Adding an interface ──────────────────────────────────────────────────────
+
+NEW_INTERFACES = {
+    "messages": [{"name": "Target", "fields": ["float64 x", "float64 y"]}],
+    "services": [{"name": "SetTarget", "request": ["Target target"], "response": ["bool accepted"]}],
+}
+INTERFACE_CASES = {  # id -> (flavour, interfaces_location)
+    "ament_python-separate": ("ament_python", "separate"),
+    "ament_cmake-separate": ("ament_cmake", "separate"),
+    "ament_cmake-package": ("ament_cmake", "package"),
+    "catkin-separate": ("catkin", "separate"),
+    "catkin-package": ("catkin", "package"),
+}
+
+
+def definition_lines(path: Path) -> list[str]:
+    return [line for line in path.read_text().splitlines() if line and not line.startswith("#")]
+
+
+@pytest.mark.parametrize("case", INTERFACE_CASES)
+def test_add_an_interface(project, current_template, tmp_path, case):
+    flavor_name, location = INTERFACE_CASES[case]
+    flavor = Flavor(flavor_name)
+    destination = project(flavor_name)
+    kept = {name: edit_user_file(destination, flavor, name) for name in ("driver", "monitor")}
+    commit_all(destination)
+
+    nodes = flavor.answers["nodes"]
+    find_node(nodes, "driver")["publishers"] = [*find_node(nodes, "driver").get("publishers", []), "target:Target"]
+    find_node(nodes, "monitor")["service_servers"] = ["set_target:SetTarget"]
+    result = run_update(destination, {"interfaces": NEW_INTERFACES, "interfaces_location": location,
+                                      "nodes": nodes})
+    assert_clean_update(result, destination)
+
+    home = PACKAGE if location == "package" else f"{PACKAGE}_interfaces"
+    assert definition_lines(destination / home / "msg" / "Target.msg") == ["float64 x", "float64 y"]
+    assert definition_lines(destination / home / "srv" / "SetTarget.srv") == ["Target target", "---", "bool accepted"]
+    for name, lines in kept.items():
+        assert missing_block(destination / flavor.user_file(name), lines) is None
+
+    # The nodes use the new types, and the package depends on (or builds) them.
+    driver_base = (destination / flavor.base_file("driver")).read_text()
+    monitor_base = (destination / flavor.base_file("monitor")).read_text()
+    if flavor.language("driver") == "cpp":
+        assert f"#include \"{home}/{'Target.h' if flavor.ros1 else 'msg/target.hpp'}\"" in driver_base
+    else:
+        assert f"from {home}.msg import Target" in driver_base
+    assert f"from {home}.srv import SetTarget" in monitor_base
+    dependencies = dependency_names(destination / flavor.package_xml)
+    if location == "separate":
+        assert f"{PACKAGE}_interfaces" in dependencies
+        interfaces_xml = destination / home / "package.xml"
+        assert parse_package(str(interfaces_xml)).name == home
+    else:
+        package = parse_package(str(destination / flavor.package_xml))
+        if flavor.ros1:
+            assert {"message_generation", "message_runtime"} <= dependencies
+        else:
+            assert "rosidl_default_generators" in {d.name for d in package.buildtool_depends}
+            assert [group.name for group in package.member_of_groups] == ["rosidl_interface_packages"]
+        cmake = (destination / flavor.build_file).read_text()
+        assert ("add_message_files(" if flavor.ros1 else "rosidl_generate_interfaces(") in cmake
+
+    # Committed, the same package grows no further when updated again with the same answers.
+    commit_all(destination, "interfaces added")
+    again = run_update(destination, {})
+    assert_clean_update(again, destination)
+    assert git("status", "--porcelain", cwd=destination).stdout == "", again
 
 
 # ─── Template upgrade 0.1.0 -> 0.2.0 ──────────────────────────────────────────
