@@ -177,11 +177,17 @@ def cpp_base_includes(node) -> str:
         headers += ["rclcpp_lifecycle/lifecycle_node.hpp", "rclcpp_lifecycle/lifecycle_publisher.hpp"]
     if any(p.has_descriptor for p in node.parameters):
         headers.append("rcl_interfaces/msg/parameter_descriptor.hpp")
+    return cpp_includes(headers + _parameter_headers(node))
+
+
+def _parameter_headers(node) -> list[str]:
+    """The standard headers a base class's parameter members need, in both ROS generations."""
+    headers = []
     if any(p.type.scalar == "string" for p in node.parameters):
         headers.append("<string>")
     if any(p.type.is_array for p in node.parameters):
         headers.append("<vector>")
-    return cpp_includes(headers)
+    return headers
 
 
 def _starter_headers(node) -> list[str]:
@@ -317,11 +323,7 @@ def ros1_cpp_base_includes(node) -> str:
         headers.append("actionlib/server/simple_action_server.h")
     if node.action_clients:
         headers.append("actionlib/client/simple_action_client.h")
-    if any(p.type.scalar == "string" for p in node.parameters):
-        headers.append("<string>")
-    if any(p.type.is_array for p in node.parameters):
-        headers.append("<vector>")
-    return cpp_includes(headers)
+    return cpp_includes(headers + _parameter_headers(node))
 
 
 def ros1_cpp_node_includes(node) -> str:
