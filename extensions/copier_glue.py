@@ -1,17 +1,15 @@
 """What Copier loads: Jinja filters and globals, and the hook that adds `package` to templates.
 
-Copier imports this file by path (copier-template-extensions). The `rna` package
-next to it is imported under a name unique to this checkout, because
-`copier update` renders the old and the new template version in one process and
-a plain `import rna` would hand the new version the old version's modules.
+Copier imports this file by path (copier-template-extensions); `rna`, the package next to
+it, is imported by its plain name. `copier update` renders the old and the new template
+version in one process, so `rna` modules another checkout imported are dropped from
+sys.modules first: each version's glue keeps the `rna` of its own checkout.
 """
 
 from __future__ import annotations
 
 import functools
 import getpass
-import hashlib
-import importlib.util
 import json
 import subprocess
 import sys
@@ -22,30 +20,43 @@ from copier_template_extensions import ContextHook
 from jinja2 import pass_context
 from jinja2.ext import Extension
 
-
-def _load_rna():
-    package_dir = Path(__file__).resolve().parent / "rna"
-    name = "rna_" + hashlib.sha256(str(package_dir).encode()).hexdigest()[:12]
-    if name not in sys.modules:
-        spec = importlib.util.spec_from_file_location(
-            name, package_dir / "__init__.py", submodule_search_locations=[str(package_dir)]
-        )
-        module = importlib.util.module_from_spec(spec)
-        sys.modules[name] = module
-        spec.loader.exec_module(module)
-    return sys.modules[name]
+_HERE = Path(__file__).resolve().parent
 
 
-rna = _load_rna()
+def _forget_other_rna() -> None:
+    for name in [name for name in sys.modules if name == "rna" or name.startswith("rna.")]:
+        origin = getattr(sys.modules[name], "__file__", None) or ""
+        if not Path(origin).resolve().is_relative_to(_HERE):
+            del sys.modules[name]
+
+
+_forget_other_rna()
+sys.path.insert(0, str(_HERE))
+try:
+    import rna
+    import rna.configs
+    import rna.dialects
+    import rna.distros
+    import rna.dialects.python
+    import rna.layout
+    import rna.names
+    import rna.wording
+    import rna.workspace
+finally:
+    sys.path.remove(str(_HERE))
+
+
+def _answers(context) -> rna.Answers:
+    return rna.Answers({key: context.get(key) for key in context.keys() if not key.startswith("_")})
 
 
 @pass_context
 def answer_error(context, question: str) -> str:
     """Copier validator: the broken rule for an answer typed at a prompt, else "".
 
-    Answers given with --data, --data-file or --defaults are checked when
-    rendering starts instead (PackageContext), where a broken rule ends the run
-    with one line; a validator failing there would print a traceback.
+    Answers given with --data, --data-file or --defaults are checked when rendering
+    starts instead (PackageContext), where a broken rule ends the run with one line; a
+    validator failing there would print a traceback.
     """
     conf = context.get("_copier_conf") or {}
     if conf.get("defaults") or question in (conf.get("data") or {}):
@@ -54,9 +65,15 @@ def answer_error(context, question: str) -> str:
 
 
 @pass_context
-def describe_nodes(context) -> str:
+def default_description(context) -> str:
     """The default description: what the nodes answered so far do."""
-    return rna.model.describe_nodes(context)
+    return _answers(context).default_description
+
+
+@pass_context
+def default_nodes(context) -> str:
+    """The `nodes` default: the node the quick questions describe, or the demo."""
+    return _answers(context).default_nodes
 
 
 @pass_context
@@ -95,6 +112,27 @@ def answers_file_name(context) -> str:
     return f".copier-answers.rna-{name or context.get('node_name') or 'node'}.yml"
 
 
+@pass_context
+def user_files(context, language: str, ros: int) -> str:
+    """The glob of the files of one kind that users own, for `_skip_if_exists`."""
+    return rna.layout.user_files_glob(context.get("package_name"), context.get("target"), ros, language)
+
+
+@pass_context
+def base_files(context, language: str, ros: int) -> str:
+    return rna.layout.base_files_glob(context.get("package_name"), context.get("target"), ros, language)
+
+
+@pass_context
+def python_init_file(context, ros: int) -> str:
+    return rna.layout.python_init_file(context.get("package_name"), context.get("target"), ros)
+
+
+def package_files() -> str:
+    """The files of a whole package, one per line, as `_exclude` patterns of the destination's root."""
+    return "\n".join("/" + path for path in rna.layout.PACKAGE_FILES)
+
+
 def git_config(key: str) -> str:
     """The user's git setting (user.name, user.email) as a default answer, or ""."""
     try:
@@ -110,33 +148,24 @@ class RnaExtension(Extension):
 
     def __init__(self, environment):
         super().__init__(environment)
-        environment.globals.update(answer_error=answer_error, answers_file_name=answers_file_name,
-                                   describe_nodes=describe_nodes, existing_package=existing_package,
-                                   found_interfaces=found_interfaces, git_config=git_config,
-                                   login_name=getpass.getuser)
-        code = rna.code
+        environment.globals.update(
+            answer_error=answer_error, answers_file_name=answers_file_name, base_files=base_files,
+            builds_interfaces=rna.distros.BUILDS_INTERFACES, languages=rna.distros.languages,
+            default_description=default_description, default_nodes=default_nodes,
+            existing_package=existing_package, found_interfaces=found_interfaces, git_config=git_config,
+            login_name=getpass.getuser, package_files=package_files, python_init_file=python_init_file,
+            user_files=user_files)
         environment.filters.update(
+            dialect=rna.dialects.dialect,
+            driver_docstring=rna.wording.driver_docstring,
             package_name_from_folder=rna.names.package_name_from_folder,
-            split_list=rna.split_list,
-            python_literal=rna.parameters.python_literal,
-            python_text=code.python_text,
-            with_article=code.with_article,
-            python_base_imports=code.python_base_imports,
-            python_node_imports=code.python_node_imports,
-            python_descriptor=code.python_descriptor,
-            python_sample=code.python_sample,
-            python_format=code.python_format,
-            cpp_base_includes=code.cpp_base_includes,
-            cpp_node_includes=code.cpp_node_includes,
-            cpp_parameter_descriptor=code.cpp_parameter_descriptor,
-            cpp_sample=code.cpp_sample,
-            cpp_format=code.cpp_format,
-            cpp_format_arg=code.cpp_format_arg,
-            cmake_targets=code.cmake_targets,
-            ros1_python_base_imports=code.ros1_python_base_imports,
-            ros1_python_node_imports=code.ros1_python_node_imports,
-            ros1_cpp_base_includes=code.ros1_cpp_base_includes,
-            ros1_cpp_node_includes=code.ros1_cpp_node_includes,
+            period_text=rna.wording.period_text,
+            python_literal=rna.dialects.python.literal,
+            python_text=rna.dialects.python.text_literal,
+            summary=rna.wording.node_summary,
+            summary_lines=rna.wording.summary_lines,
+            with_article=rna.wording.with_article,
+            yaml_value=rna.configs.yaml_literal,
         )
 
 
@@ -149,7 +178,7 @@ class PackageContext(ContextHook):
     def hook(self, context):
         if str(context.get("_copier_phase")) != "render":
             return
-        answers = {key: context.get(key) for key in (*rna.model.QUESTIONS, "copyright_year")}
+        answers = {key: context.get(key) for key in (*rna.answers.QUESTIONS, "copyright_year")}
         key = json.dumps([answers, str((context.get('_copier_conf') or {}).get('dst_path'))],
                          sort_keys=True, default=str)
         if key not in _models:
@@ -170,7 +199,7 @@ def _refuse_to_overwrite(package, context) -> None:
     if (destination / answers_file_name(context)).exists():
         return  # an update of the node
     node = package.nodes[0]
-    for path in (node.user_file, node.base_file, f"config/{node.name}.yaml"):
+    for path in (node.user_file, node.base_file, node.config_file):
         if (destination / path).exists():
             raise UserMessageError(f"rna-template: invalid answer to 'nodes': {path} already exists in "
                                    f"{package.name}; choose another node name (nothing was written)")

@@ -9,10 +9,9 @@ from pathlib import Path
 import pytest
 import yaml
 from catkin_pkg.package import parse_package
-
-import existing_packages
-from conftest import FIXED_ANSWERS, add_node, generate
 from rna import build_package, integrate
+from support import existing_packages
+from support.generation import FIXED_ANSWERS, add_node, generate
 
 COPIER = str(Path(sys.executable).with_name("copier"))
 

@@ -5,21 +5,9 @@ from __future__ import annotations
 import copy
 
 import pytest
-
-from rna import AnswerError, build_package, question_error
-
-VALID = {
-    "package_name": "robot_driver",
-    "description": "Drives the robot",
-    "maintainer": "Ada Lovelace",
-    "maintainer_email": "ada@example.com",
-    "license": "Apache-2.0",
-    "copyright_holder": "Ada Lovelace",
-    "copyright_year": 2026,
-    "ros_distro": "jazzy",
-    "build_type": "ament_cmake",
-    "nodes": [{"name": "driver", "publishers": ["cmd_vel:geometry_msgs/msg/Twist"]}],
-}
+from rna import AnswerError, Answers, build_package, question_error
+from rna.dialects import dialect
+from support.generation import VALID
 
 
 def answers(**changes):
@@ -168,7 +156,7 @@ def test_generated_names_come_from_what_the_user_named():
     assert driver.service_servers[0].callback == "on_reset_request"
     assert driver.action_clients[0].callbacks["send"] == "send_navigate_goal"
     assert driver.timers[0].member == "timer"
-    assert driver.timers[0].cpp_period == "std::chrono::milliseconds(100)"
+    assert dialect(driver).period(driver.timers[0]) == "std::chrono::milliseconds(100)"
 
 
 def test_dependencies_are_exactly_what_the_nodes_use():
@@ -190,7 +178,7 @@ def test_python_names_avoid_clashes():
         "name": "odometry",
         "subscribers": ["odom:nav_msgs/msg/Odometry", "pose:geometry_msgs/msg/Pose", "p2:turtlesim/msg/Pose"],
     }]))
-    types = {t.full_name: name for t, name in package.nodes[0].python_types.items()}
+    types = {t.full_name: name for t, name in dialect(package.nodes[0]).types.items()}
     assert types == {"nav_msgs/msg/Odometry": "NavMsgsOdometry", "geometry_msgs/msg/Pose": "GeometryMsgsPose",
                      "turtlesim/msg/Pose": "TurtlesimPose"}
 
@@ -220,12 +208,13 @@ def test_where_the_output_goes_has_rules_too(question, changes, rule):
 def test_several_publishers_get_a_message_variable_each():
     one = build_package(node(publishers=["a:std_msgs/msg/String"], timers=[1])).nodes[0]
     two = build_package(node(publishers=["a:std_msgs/msg/String", "/b/c:std_msgs/msg/Int32"], timers=[1])).nodes[0]
-    assert list(one.message_variables.values()) == ["msg"]
-    assert list(two.message_variables.values()) == ["a_msg", "b_c_msg"]
+    assert list(dialect(one).message_variables.values()) == ["msg"]
+    assert list(dialect(two).message_variables.values()) == ["a_msg", "b_c_msg"]
 
 
 def test_default_description_says_what_the_nodes_do():
-    from rna.model import describe_nodes
+    def describe_nodes(answers):
+        return Answers(answers).default_description
 
     assert describe_nodes({**VALID, "nodes": [
         {"name": "talker", "publishers": ["chatter:std_msgs/msg/String"]},

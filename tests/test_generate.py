@@ -7,58 +7,12 @@ import os
 import re
 import subprocess
 import sys
-import xml.etree.ElementTree as ET
-from pathlib import Path
 
 import pytest
 import yaml
 from catkin_pkg.package import parse_package
-
-from conftest import answers_of
-
-ALL_ENDPOINTS = {
-    "publishers": ["cmd_vel:geometry_msgs/msg/Twist", "chatter:std_msgs/msg/String"],
-    "subscribers": ["odom:nav_msgs/msg/Odometry", "/camera/depth/points:sensor_msgs/msg/PointCloud2:sensor_data"],
-    "service_servers": ["reset:std_srvs/srv/Trigger"],
-    "service_clients": ["enable:std_srvs/srv/SetBool"],
-    "action_servers": ["fibonacci:test_msgs/action/Fibonacci"],
-    "action_clients": ["compute:test_msgs/action/Fibonacci"],
-    "timers": ["control_loop:0.05", "slow:2"],
-    "parameters": [
-        {"name": "gain", "type": "double", "default": 2.0, "description": "Proportional gain",
-         "range": [0.0, 10.0]},
-        "frame_id:string=base_link",
-        "gains:double[]=[1.0, 2.5]",
-        {"name": "retries", "default": 3, "read_only": True, "range": [0, 10, 1]},
-        "verbose=true",
-    ],
-}
-
-ROS1_ENDPOINTS = {**ALL_ENDPOINTS, "action_servers": ["fibonacci:actionlib/action/Test"],
-                  "action_clients": ["compute:actionlib/action/TwoInts"]}
-
-VARIANTS = {
-    "python": {"build_type": "ament_python", "nodes": [{"name": "brain", **ALL_ENDPOINTS}]},
-    "cpp": {"build_type": "ament_cmake", "nodes": [{"name": "brain", **ALL_ENDPOINTS}]},
-    "mixed": {"build_type": "ament_cmake", "nodes": [
-        {"name": "driver", "language": "cpp", **ALL_ENDPOINTS},
-        {"name": "monitor", "language": "python", **ALL_ENDPOINTS},
-    ]},
-    "lifecycle": {"build_type": "ament_cmake", "nodes": [
-        {"name": "driver", "lifecycle": True, **ALL_ENDPOINTS},
-        {"name": "monitor", "language": "python", "lifecycle": True, **ALL_ENDPOINTS},
-    ]},
-    "component": {"build_type": "ament_cmake", "nodes": [
-        {"name": "camera", "component": True, "publishers": ["image:sensor_msgs/msg/Image:sensor_data"],
-         "timers": [0.033]},
-        {"name": "viewer", "component": True, "lifecycle": True,
-         "subscribers": ["image:sensor_msgs/msg/Image:sensor_data"]},
-    ]},
-    "ros1": {"ros_distro": "noetic", "nodes": [
-        {"name": "driver", "language": "cpp", **ROS1_ENDPOINTS},
-        {"name": "monitor", "language": "python", **ROS1_ENDPOINTS},
-    ]},
-}
+from support.generation import VARIANTS, answers_of, example
+from support.packages import dependencies, launched_nodes, package_dir
 
 # What package.xml must list for each variant, written out by hand.
 EXPECTED_DEPENDENCIES = {
@@ -79,41 +33,13 @@ EXPECTED_DEPENDENCIES = {
 }
 
 
-def package_dir(destination: Path) -> Path:
-    return destination / answers_of(destination)["package_name"]
-
-
-def dependencies(package_xml: Path) -> dict[str, set[str]]:
-    package = parse_package(str(package_xml))
-    package.validate()
-    assert package.package_format == 3
-    return {
-        "depend": {d.name for d in package.build_depends} & {d.name for d in package.exec_depends}
-        & {d.name for d in package.build_export_depends},
-        "exec_depend": {d.name for d in package.exec_depends} - {d.name for d in package.build_depends},
-    }
-
-
-def launched_nodes(launch_file: Path) -> dict[str, str]:
-    """executable -> the params file each <node> of the launch file loads (ROS 2 or ROS 1)."""
-    root = ET.parse(launch_file).getroot()
-    nodes = {}
-    for node in root.iter("node"):
-        if node.get("exec"):
-            nodes[node.get("exec")] = node.find("param").get("from")
-        else:
-            loaded = node.find("rosparam")
-            assert loaded.get("command") == "load"
-            nodes[node.get("type")] = loaded.get("file")
-    return nodes
-
-
 @pytest.mark.parametrize("variant", sorted(VARIANTS))
 def test_variant_generates_a_consistent_package(make_package, variant):
-    answers = {"package_name": "robot", **VARIANTS[variant]}
+    answers = example(VARIANTS[variant])
+    name = answers["package_name"]
     destination = make_package(answers)
     package = package_dir(destination)
-    nodes = answers["nodes"]
+    nodes = answers_of(destination)["nodes"]
 
     assert dependencies(package / "package.xml") == EXPECTED_DEPENDENCIES[variant]
     assert (package / "LICENSE").read_text().startswith("\n                                 Apache License")
@@ -124,12 +50,12 @@ def test_variant_generates_a_consistent_package(make_package, variant):
     cpp_nodes = [n["name"] for n in nodes if n["name"] not in python_nodes]
 
     if ros1:
-        launched = launched_nodes(package / "launch" / "robot.launch")
+        launched = launched_nodes(package / "launch" / f"{name}.launch")
         assert launched == {(n["name"] + ".py" if n["name"] in python_nodes else n["name"]):
-                            f"$(find robot)/config/{n['name']}.yaml" for n in nodes}
+                            f"$(find {name})/config/{n['name']}.yaml" for n in nodes}
     else:
-        launched = launched_nodes(package / "launch" / "robot.launch.xml")
-        assert launched == {n["name"]: f"$(find-pkg-share robot)/config/{n['name']}.yaml" for n in nodes}
+        launched = launched_nodes(package / "launch" / f"{name}.launch.xml")
+        assert launched == {n["name"]: f"$(find-pkg-share {name})/config/{n['name']}.yaml" for n in nodes}
     for node in nodes:
         config = yaml.safe_load((package / "config" / f"{node['name']}.yaml").read_text())
         declared = {p if isinstance(p, str) else p["name"] for p in node.get("parameters", [])}
@@ -137,34 +63,34 @@ def test_variant_generates_a_consistent_package(make_package, variant):
         assert {re.split("[:=]", p)[0] for p in declared} == set(loaded)
 
     if ros1:
-        for name in python_nodes:
-            assert os.access(package / "scripts" / f"{name}.py", os.X_OK)
-            assert (package / "src" / "robot" / f"{name}_base.py").is_file()
-        for name in cpp_nodes:
-            assert (package / "src" / f"{name}.cpp").is_file()
-            assert (package / "include" / "robot" / f"{name}_base.h").is_file()
+        for node in python_nodes:
+            assert os.access(package / "scripts" / f"{node}.py", os.X_OK)
+            assert (package / "src" / name / f"{node}_base.py").is_file()
+        for node in cpp_nodes:
+            assert (package / "src" / f"{node}.cpp").is_file()
+            assert (package / "include" / name / f"{node}_base.h").is_file()
         cmake = (package / "CMakeLists.txt").read_text()
-        for name in cpp_nodes:
-            assert f"add_executable(${{PROJECT_NAME}}_{name} src/{name}.cpp)" in cmake
-            assert f"PROPERTIES OUTPUT_NAME {name} PREFIX" in cmake
-        for name in python_nodes:
-            assert f"  scripts/{name}.py\n" in cmake
+        for node in cpp_nodes:
+            assert f"add_executable(${{PROJECT_NAME}}_{node} src/{node}.cpp)" in cmake
+            assert f"PROPERTIES OUTPUT_NAME {node} PREFIX" in cmake
+        for node in python_nodes:
+            assert f"  scripts/{node}.py\n" in cmake
         assert ("catkin_python_setup()" in cmake) == bool(python_nodes)
         return
 
-    for name in python_nodes:
-        assert (package / "robot" / f"{name}.py").is_file()
-        assert (package / "robot" / f"{name}_base.py").is_file()
-    for name in cpp_nodes:
-        assert (package / "src" / f"{name}.cpp").is_file()
-        assert (package / "include" / "robot" / f"{name}_base.hpp").is_file()
+    for node in python_nodes:
+        assert (package / name / f"{node}.py").is_file()
+        assert (package / name / f"{node}_base.py").is_file()
+    for node in cpp_nodes:
+        assert (package / "src" / f"{node}.cpp").is_file()
+        assert (package / "include" / name / f"{node}_base.hpp").is_file()
     assert (package / "src").exists() == bool(cpp_nodes)
-    assert (package / "robot").exists() == (bool(python_nodes) or answers["build_type"] == "ament_python")
+    assert (package / name).exists() == (bool(python_nodes) or answers["build_type"] == "ament_python")
 
     if answers["build_type"] == "ament_python":
         setup = (package / "setup.py").read_text()
-        scripts = re.findall(r"'(\w+) = robot\.(\w+):main'", setup)
-        assert scripts == [(name, name) for name in python_nodes]
+        scripts = re.findall(rf"'(\w+) = {name}\.(\w+):main'", setup)
+        assert scripts == [(node, node) for node in python_nodes]
         assert not (package / "CMakeLists.txt").exists()
     else:
         cmake = (package / "CMakeLists.txt").read_text()
@@ -181,7 +107,7 @@ def test_variant_generates_a_consistent_package(make_package, variant):
 @pytest.mark.parametrize("variant", sorted(VARIANTS))
 def test_generated_python_has_no_undefined_names(make_package, variant):
     """A quick pyflakes pass (ruff); the ros tier runs ament_flake8 and ament_pep257."""
-    package = package_dir(make_package({"package_name": "robot", **VARIANTS[variant]}))
+    package = package_dir(make_package(example(VARIANTS[variant])))
     files = sorted(package.rglob("*.py"))
     for path in files:
         ast.parse(path.read_text(), str(path))

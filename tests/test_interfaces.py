@@ -7,29 +7,14 @@ from pathlib import Path
 
 import pytest
 from catkin_pkg.package import parse_package
-
-from conftest import answers_of
 from rna import AnswerError, build_package
-from rna.definitions import parse_definitions, parse_field
+from rna.answers.interfaces import parse_definitions
+from rna.definitions import parse_field
 from rna.workspace import find_interfaces
-from test_answers import VALID
+from support.generation import VALID, answers_of, example
 
-TRACKER_INTERFACES = {
-    "messages": [
-        {"name": "Target", "fields": ["float64 x", "float64 y", 'string frame_id "map"', "int32 MAX_TARGETS=5",
-                                      "geometry_msgs/Point position"]},
-        {"name": "TargetArray", "fields": ["Target[] targets", "std_msgs/Header header"]},
-    ],
-    "services": [{"name": "SetTarget", "request": ["Target target"], "response": ["bool accepted"]}],
-    "actions": [{"name": "Approach", "goal": ["float64 distance"], "result": ["bool reached"],
-                 "feedback": ["float64 remaining"]}],
-}
-TRACKER_NODES = [
-    {"name": "detector", "publishers": ["targets:TargetArray", "target:Target"],
-     "service_clients": ["set_target:SetTarget"], "action_clients": ["approach:Approach"], "timers": [0.2]},
-    {"name": "mover", "subscribers": ["target:tracker_interfaces/msg/Target"],
-     "service_servers": ["set_target:SetTarget"], "action_servers": ["approach:Approach"]},
-]
+TRACKER_INTERFACES = example("tracker")["interfaces"]
+TRACKER_NODES = example("tracker")["nodes"]
 
 
 def field(text: str, ros: int = 2, local: tuple[str, ...] = ()):

@@ -11,8 +11,7 @@ from pathlib import Path
 import pexpect
 import pytest
 import yaml
-
-from conftest import FIXED_ANSWERS, answers_of
+from support.generation import FIXED_ANSWERS, answers_of
 
 COPIER = str(Path(sys.executable).with_name("copier"))
 

@@ -14,13 +14,11 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
-
-import existing_packages
-from conftest import add_node, generate, unavailable
+from support import existing_packages
 from support import ros1 as ros1_support
+from support.generation import VARIANTS, add_node, example, generate
 from support.processes import NodeProcess, assert_clean_exit, started
-from test_generate import VARIANTS
-from test_interfaces import TRACKER_INTERFACES
+from support.tiers import unavailable
 
 pytestmark = pytest.mark.ros1
 
@@ -110,7 +108,7 @@ def catkin_ws(ros1, template_dir, tmp_path_factory) -> CatkinWorkspace:
     generate(template_dir, path / "src" / "pairs", PAIRS_PACKAGE)
     generate(template_dir, path / "src" / "bringup", LAUNCHED_PACKAGE)
     # Every endpoint kind, parameter type and both languages: compiled with -Werror.
-    generate(template_dir, path / "src" / "everything", {"package_name": "everything", **VARIANTS["ros1"]})
+    generate(template_dir, path / "src" / "everything", example(VARIANTS["ros1"], package_name="everything"))
     generate(template_dir, path / "src" / "tracker", TRACKER)
     generate(template_dir, path / "src" / "tracker_same", TRACKER_SAME)
     # A C++ node added to a catkin package written by hand.
@@ -201,6 +199,7 @@ def _ros1_tracker_nodes() -> list[dict]:
 
 
 # ROS 1 has no default values in interface definitions.
+TRACKER_INTERFACES = example("tracker")["interfaces"]
 ROS1_INTERFACES = {**TRACKER_INTERFACES, "messages": [
     {**TRACKER_INTERFACES["messages"][0], "fields": ["float64 x", "float64 y", "string frame_id",
                                                      "int32 MAX_TARGETS=5", "geometry_msgs/Point position"]},

@@ -15,13 +15,11 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
-
-import existing_packages
-from conftest import add_node, generate, unavailable
+from support import existing_packages
 from support import ros2 as ros2_support
+from support.generation import VARIANTS, add_node, example, generate
 from support.processes import NodeProcess, assert_clean_exit, started
-from test_generate import VARIANTS
-from test_interfaces import TRACKER_INTERFACES, TRACKER_NODES
+from support.tiers import unavailable
 
 pytestmark = pytest.mark.ros
 
@@ -64,11 +62,9 @@ CMAKE_PYTHON = {
 
 # Custom interfaces: a separate tracker_interfaces package, and the same ones built by
 # an ament_cmake package for its own (Python) nodes.
-TRACKER = {"package_name": "tracker", "build_type": "ament_python", "interfaces": TRACKER_INTERFACES,
-           "nodes": TRACKER_NODES}
-TRACKER_SAME = {"package_name": "tracker_same", "build_type": "ament_cmake", "interfaces_location": "package",
-                "interfaces": TRACKER_INTERFACES,
-                "nodes": [{**node, "language": "python"} for node in TRACKER_NODES]}
+TRACKER = example("tracker")
+TRACKER_SAME = example("tracker", package_name="tracker_same", build_type="ament_cmake", interfaces_location="package",
+                       nodes=[{**node, "language": "python"} for node in TRACKER["nodes"]])
 TRACKER_SAME["nodes"][1]["subscribers"] = ["target:Target"]
 
 
@@ -253,8 +249,8 @@ def test_ament_cmake_python_node_runs(workspace):
 def variant_packages(template_dir, tmp_path_factory) -> dict[str, Path]:
     root = tmp_path_factory.mktemp("lint")
     packages = {}
-    for name, answers in {**VARIANTS, "defaults": {}}.items():
-        generate(template_dir, root / name, {"package_name": "robot", **answers} if answers else None)
+    for name, answers in {**VARIANTS, "defaults": None}.items():
+        generate(template_dir, root / name, example(answers) if answers else None)
         packages[name] = root / name
     return packages
 
@@ -269,7 +265,7 @@ def test_generated_python_passes_flake8_and_pep257(ros2, variant_packages, varia
 
 
 @pytest.mark.parametrize("variant", [name for name, answers in sorted(VARIANTS.items())
-                                     if answers.get("build_type") == "ament_cmake" or name == "ros1"])
+                                     if example(answers).get("build_type") == "ament_cmake" or name == "ros1"])
 def test_generated_cpp_passes_cpplint_and_uncrustify(ros2, variant_packages, variant):
     files = sorted(variant_packages[variant].rglob("*.[ch]pp"))
     assert files

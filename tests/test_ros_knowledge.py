@@ -1,15 +1,13 @@
-"""Unit tests of the pure functions in extensions/rna: names, interface types, parameters, code."""
+"""Unit tests of the pure functions in extensions/rna: names, interface types, parameters, dialects."""
 
 from __future__ import annotations
 
 import pytest
-
-from rna import code, names
+from rna import configs, names
+from rna.dialects import Ros1Cpp, Ros1Python, Ros2Cpp, Ros2Python, cpp, python
 from rna.interfaces import InterfaceType, parse_interface
 from rna.licenses import LICENSES
-from rna.parameters import (
-    ParameterType, coerce_default, cpp_literal, infer_type, parse_type, python_literal, yaml_literal,
-)
+from rna.parameters import ParameterType, coerce_default, infer_type, parse_type
 
 
 @pytest.mark.parametrize("name", ["turtlesim", "my_robot2", "a1", "target_tracking"])
@@ -106,23 +104,23 @@ def test_package_name_defaults_from_the_folder(folder, package):
 
 def test_interface_spelling_ros2():
     twist = parse_interface("geometry_msgs/msg/PointCloud2", "msg")
-    assert twist.cpp_header == "geometry_msgs/msg/point_cloud2.hpp"
-    assert twist.cpp_type == "geometry_msgs::msg::PointCloud2"
-    assert twist.python_module == "geometry_msgs.msg"
+    assert Ros2Cpp.header(twist) == "geometry_msgs/msg/point_cloud2.hpp"
+    assert Ros2Cpp.type(twist) == "geometry_msgs::msg::PointCloud2"
+    assert Ros2Python.module(twist) == "geometry_msgs.msg"
     assert twist.full_name == "geometry_msgs/msg/PointCloud2"
     action = parse_interface("test_msgs/Fibonacci", "action")
     assert action.full_name == "test_msgs/action/Fibonacci"
-    assert action.cpp_header == "test_msgs/action/fibonacci.hpp"
+    assert Ros2Cpp.header(action) == "test_msgs/action/fibonacci.hpp"
 
 
 def test_interface_spelling_ros1():
     action = parse_interface("actionlib_tutorials/action/Fibonacci", "action", ros=1)
-    assert action.cpp_header == "actionlib_tutorials/FibonacciAction.h"
-    assert action.cpp_type == "actionlib_tutorials::FibonacciAction"
-    assert action.python_module == "actionlib_tutorials.msg"
+    assert Ros1Cpp.header(action) == "actionlib_tutorials/FibonacciAction.h"
+    assert Ros1Cpp.type(action) == "actionlib_tutorials::FibonacciAction"
+    assert Ros1Python.module(action) == "actionlib_tutorials.msg"
     service = parse_interface("std_srvs/srv/SetBool", "srv", ros=1)
     assert service.full_name == "std_srvs/SetBool"
-    assert service.cpp_header == "std_srvs/SetBool.h"
+    assert Ros1Cpp.header(service) == "std_srvs/SetBool.h"
 
 
 @pytest.mark.parametrize(
@@ -174,20 +172,21 @@ def test_parameter_type_errors():
 def test_parameter_values_are_spelled_per_language():
     assert infer_type([1, 2.5]) == ParameterType("double", True)
     assert coerce_default(2, ParameterType("double")) == 2.0
-    assert python_literal("it's") == '"it\'s"'
-    assert python_literal([True, False]) == "[True, False]"
-    assert cpp_literal(2.0, ParameterType("double")) == "2.0"
-    assert cpp_literal([1, 2], ParameterType("int", True)) == "std::vector<int64_t>{1, 2}"
-    assert cpp_literal('say "hi"', ParameterType("string")) == '"say \\"hi\\""'
-    assert yaml_literal("true") == "'true'"
-    assert yaml_literal(1.0) == "1.0"
-    assert yaml_literal([0.5, 1e-06]) == "[0.5, 1e-06]"
+    assert python.literal("it's") == '"it\'s"'
+    assert python.literal([True, False]) == "[True, False]"
+    assert cpp.literal(2.0, ParameterType("double")) == "2.0"
+    assert cpp.literal([1, 2], ParameterType("int", True)) == "std::vector<int64_t>{1, 2}"
+    assert cpp.literal([1, 2], ParameterType("int", True), Ros1Cpp.SCALARS) == "std::vector<int>{1, 2}"
+    assert cpp.literal('say "hi"', ParameterType("string")) == '"say \\"hi\\""'
+    assert configs.yaml_literal("true") == "'true'"
+    assert configs.yaml_literal(1.0) == "1.0"
+    assert configs.yaml_literal([0.5, 1e-06]) == "[0.5, 1e-06]"
 
 
 def test_python_imports_follow_the_google_order():
-    block = code.python_imports([
-        ("std_msgs.msg", "String"), ("rclpy", None), ("time", None), ("rclpy.node", "Node"),
-        ("rclpy.action", "ActionServer"), ("rclpy.action", "CancelResponse"), ("my_pkg.talker_base", "TalkerBase"),
+    block = python.import_block([
+        "std_msgs.msg:String", "rclpy", "time", "rclpy.node:Node",
+        "rclpy.action:ActionServer", "rclpy.action:CancelResponse", "my_pkg.talker_base:TalkerBase",
     ])
     assert block == (
         "import time\n\n"
@@ -198,7 +197,7 @@ def test_python_imports_follow_the_google_order():
 
 
 def test_cpp_includes_put_standard_headers_first():
-    assert code.cpp_includes(["rclcpp/rclcpp.hpp", "<string>", "<chrono>", "std_msgs/msg/string.hpp"]) == (
+    assert cpp.include_block(["rclcpp/rclcpp.hpp", "<string>", "<chrono>", "std_msgs/msg/string.hpp"]) == (
         '#include <chrono>\n#include <string>\n\n#include "rclcpp/rclcpp.hpp"\n#include "std_msgs/msg/string.hpp"'
     )
 
@@ -214,8 +213,8 @@ def test_license_headers_are_comment_blocks_with_the_copyright_first(spdx):
 
 
 def test_long_python_text_is_split_to_fit():
-    assert code.python_text("short", 16, 8) == "'short'"
-    long = code.python_text("word " * 40, 16, 8)
+    assert python.text_literal("short", 16, 8) == "'short'"
+    long = python.text_literal("word " * 40, 16, 8)
     lines = long.splitlines()
     assert lines[0] == "(" and all(len(line) <= 99 for line in lines)
     assert eval(long) == "word " * 40  # noqa: S307 - our own literal
@@ -225,8 +224,6 @@ ROS2_CONFIG = "/**:\n  ros__parameters:\n    # Gain\n    gain: {gain}\n\n    fra
 
 
 def test_config_files_merge_by_parameter():
-    from rna import configs
-
     old = ROS2_CONFIG.format(gain=1.0, frame="odom")
     mine = ROS2_CONFIG.format(gain=1.8, frame="odom") + "    mine: true\n"
     new = ROS2_CONFIG.format(gain=1.0, frame="map")

@@ -22,6 +22,7 @@ from catkin_pkg.package import parse_package
 
 if "support.template_repo" not in sys.modules:  # its asserts explain themselves too
     pytest.register_assert_rewrite("support.template_repo")
+from support.packages import dependency_names  # noqa: E402
 from support.template_repo import (  # noqa: E402
     FLAVORS, NEW_VERSION, OLD_VERSION, PACKAGE, Flavor, answers_of, append_after, commit_all, conflict_excerpts,
     conflicted_files, find_node, generate_project, git, managed_lines, missing_block, replace_text, run_update,
@@ -39,12 +40,6 @@ def assert_clean_update(result, project: Path) -> None:
     assert result.returncode == 0, f"copier update failed\n{result}"
     conflicts = conflicted_files(project)
     assert not conflicts, f"conflicts left in {conflicts}\n{conflict_excerpts(project)}\n{result}"
-
-
-def dependency_names(package_xml: Path) -> set[str]:
-    package = parse_package(str(package_xml))
-    package.validate()
-    return {d.name for d in package.build_depends + package.exec_depends + package.build_export_depends}
 
 
 def launched(project: Path, flavor: Flavor) -> dict[str, tuple[str, str]]:
@@ -520,7 +515,6 @@ def test_migration_to_0_2_0_renames_catkin_targets_in_user_lines(project):
 
 
 def test_target_renaming_leaves_managed_blocks_and_other_names_alone():
-    sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "extensions"))
     from migrate_0_2_0 import rename_targets
 
     text = ("# BEGIN rna-template: the nodes\nadd_executable(${PROJECT_NAME}_driver src/driver.cpp)\n"

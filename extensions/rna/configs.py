@@ -1,4 +1,4 @@
-"""Merging a node's config file by parameter, where a line-by-line merge conflicts.
+"""A node's config file: how YAML spells parameter values, and merging it by parameter.
 
 `copier update` merges `config/<node>.yaml` line by line. Where that conflicts (a
 tuned value next to a changed default, or a file laid out by an older version), the
@@ -13,7 +13,14 @@ import re
 
 import yaml
 
-from .parameters import yaml_literal
+
+def yaml_literal(value: object) -> str:
+    """One YAML scalar or flow list that ROS's parameter parsers read back with the same type."""
+    if isinstance(value, float):
+        return repr(value)
+    if isinstance(value, list):
+        return "[" + ", ".join(yaml_literal(item) for item in value) + "]"
+    return yaml.safe_dump(value, default_flow_style=True, width=10**6).strip().removesuffix("...").strip()
 
 
 def parameters(text: str) -> dict | None:

@@ -14,7 +14,7 @@ from __future__ import annotations
 import re
 import xml.etree.ElementTree as ET
 
-from .code import cmake_targets
+from .dialects import dialect
 
 
 def _markers(comment: str, closing: str, node, indent: str = "") -> tuple[str, str]:
@@ -62,7 +62,7 @@ def ament_cmake_lists(text: str, package) -> tuple[str, list[str]]:
         block += [f"find_package({dependency} REQUIRED)" for dependency in node.dependencies]
         block += [f"add_executable({node.name} src/{node.name}.cpp)",
                   f"target_include_directories({node.name} PRIVATE include)",
-                  f"target_link_libraries({node.name} PRIVATE {' '.join(cmake_targets(node))})",
+                  f"target_link_libraries({node.name} PRIVATE {' '.join(dialect(node).cmake_targets)})",
                   f"install(TARGETS {node.name} DESTINATION lib/${{PROJECT_NAME}})"]
     else:
         if not re.search(r"^\s*ament_python_install_package\(", _outside_blocks(text), re.M):

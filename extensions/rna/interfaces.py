@@ -1,15 +1,13 @@
-"""ROS interface types (messages, services, actions) and how each language spells them.
+"""ROS interface types (messages, services, actions), named as ROS tools name them.
 
-This is the one place that knows that `geometry_msgs/msg/PointStamped` is included
-as `geometry_msgs/msg/point_stamped.hpp`, named `geometry_msgs::msg::PointStamped`
-in C++ and imported from `geometry_msgs.msg` in Python, and what changes for ROS 1.
+How each language spells a type (headers, C++ names, Python modules) is in rna.dialects.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .names import camel_to_snake, is_camel_case, package_name_error
+from .names import is_camel_case, package_name_error
 
 KINDS = ("msg", "srv", "action")
 KIND_NAMES = {"msg": "message", "srv": "service", "action": "action"}
@@ -38,32 +36,6 @@ class InterfaceType:
         if self.ros == 1:
             return f"{self.package}/{self.name}"
         return f"{self.package}/{self.kind}/{self.name}"
-
-    @property
-    def cpp_header(self) -> str:
-        if self.ros == 1:
-            suffix = "Action" if self.kind == "action" else ""
-            return f"{self.package}/{self.name}{suffix}.h"
-        return f"{self.package}/{self.kind}/{camel_to_snake(self.name)}.hpp"
-
-    @property
-    def cpp_type(self) -> str:
-        if self.ros == 1:
-            suffix = "Action" if self.kind == "action" else ""
-            return f"{self.package}::{self.name}{suffix}"
-        return f"{self.package}::{self.kind}::{self.name}"
-
-    def cpp_part(self, part: str) -> str:
-        """A service's Request/Response or an action's Goal/Result/Feedback type in C++."""
-        if self.ros == 1:
-            return f"{self.package}::{self.name}{part}"
-        return f"{self.cpp_type}::{part}"
-
-    @property
-    def python_module(self) -> str:
-        # ROS 1 generates action types as messages (FooAction, FooGoal, ...).
-        kind = "msg" if self.ros == 1 and self.kind == "action" else self.kind
-        return f"{self.package}.{kind}"
 
     @property
     def data_field(self) -> str | None:

@@ -1,17 +1,12 @@
-"""Typed node parameters: the types users may name and how C++, Python and YAML spell values."""
+"""Typed node parameters: the types users may name, and their defaults checked against them."""
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass
 
-import yaml
-
 SCALAR_TYPES = ("bool", "int", "double", "string")
 TYPE_ALIASES = {"integer": "int", "float": "double", "str": "string", "boolean": "bool"}
-
-_CPP_SCALARS = {"bool": "bool", "int": "int64_t", "double": "double", "string": "std::string"}
 
 
 @dataclass(frozen=True)
@@ -24,17 +19,6 @@ class ParameterType:
     @property
     def name(self) -> str:
         return self.scalar + ("[]" if self.is_array else "")
-
-    @property
-    def cpp_type(self) -> str:
-        scalar = _CPP_SCALARS[self.scalar]
-        return f"std::vector<{scalar}>" if self.is_array else scalar
-
-    @property
-    def ros1_cpp_type(self) -> str:
-        """roscpp's parameter server keeps integers as int (XmlRpc)."""
-        scalar = "int" if self.scalar == "int" else _CPP_SCALARS[self.scalar]
-        return f"std::vector<{scalar}>" if self.is_array else scalar
 
     @property
     def is_numeric(self) -> bool:
@@ -127,63 +111,3 @@ class Parameter:
     def range_kind(self) -> str:
         """The ParameterDescriptor field for the range: integer_range or floating_point_range."""
         return "integer_range" if self.type.scalar == "int" else "floating_point_range"
-
-    @property
-    def python_default(self) -> str:
-        return python_literal(self.default)
-
-    @property
-    def cpp_default(self) -> str:
-        return cpp_literal(self.default, self.type)
-
-    @property
-    def ros1_cpp_default(self) -> str:
-        if self.type.is_array:
-            items = ", ".join(cpp_literal(item, ParameterType(self.type.scalar)) for item in self.default)
-            return f"{self.type.ros1_cpp_type}{{{items}}}"
-        return cpp_literal(self.default, self.type)
-
-    @property
-    def yaml_default(self) -> str:
-        return yaml_literal(self.default)
-
-
-def python_literal(value: object) -> str:
-    """A Python literal in the quote style ROS's flake8 settings want (single quotes)."""
-    if isinstance(value, bool):
-        return "True" if value else "False"
-    if isinstance(value, float):
-        return repr(value)
-    if isinstance(value, int):
-        return str(value)
-    if isinstance(value, str):
-        if "'" in value and '"' not in value:
-            return '"' + value.replace("\\", "\\\\") + '"'
-        return "'" + value.replace("\\", "\\\\").replace("'", "\\'") + "'"
-    if isinstance(value, list):
-        return "[" + ", ".join(python_literal(item) for item in value) + "]"
-    raise TypeError(f"no Python literal for {value!r}")
-
-
-def cpp_literal(value: object, ptype: ParameterType) -> str:
-    """A C++ expression of the parameter's C++ type."""
-    if ptype.is_array:
-        items = ", ".join(cpp_literal(item, ParameterType(ptype.scalar)) for item in value)
-        return f"{ptype.cpp_type}{{{items}}}"
-    if ptype.scalar == "bool":
-        return "true" if value else "false"
-    if ptype.scalar == "int":
-        return str(value)
-    if ptype.scalar == "double":
-        return repr(float(value))
-    # A JSON string literal is also a valid C++ string literal.
-    return json.dumps(value, ensure_ascii=False)
-
-
-def yaml_literal(value: object) -> str:
-    """One YAML scalar or flow list that ROS's parameter parsers read back with the same type."""
-    if isinstance(value, float):
-        return repr(value)
-    if isinstance(value, list):
-        return "[" + ", ".join(yaml_literal(item) for item in value) + "]"
-    return yaml.safe_dump(value, default_flow_style=True, width=10**6).strip().removesuffix("...").strip()

@@ -38,31 +38,16 @@ from pathlib import Path
 import pytest
 import yaml
 
-from conftest import FIXED_ANSWERS, ROOT, TEMPLATE_ITEMS, snapshot_template
+from .generation import (
+    ANSWERS_FILE, FIXED_ANSWERS, ROOT, TEMPLATE_ITEMS, answers_of, git, snapshot_template, subprocess_env,
+)
+from .packages import rna
 
 OLD_VERSION = "v0.1.0"
 NEW_VERSION = "v0.2.0"
 
 CONFLICT_MARKERS = ("<<<<<<< before updating", ">>>>>>> after updating")
-ANSWERS_FILE = ".copier-answers.yml"
-
-GIT_IDENTITY = {
-    "GIT_AUTHOR_NAME": "rna tests", "GIT_AUTHOR_EMAIL": "tests@example.com",
-    "GIT_COMMITTER_NAME": "rna tests", "GIT_COMMITTER_EMAIL": "tests@example.com",
-}
 ANSI = re.compile(r"\x1b\[[0-9;]*[A-Za-z]")
-
-
-def _env() -> dict[str, str]:
-    """The environment of every git and copier subprocess: a git identity, no colours."""
-    return {**os.environ, **GIT_IDENTITY, "NO_COLOR": "1", "GIT_CONFIG_NOSYSTEM": "1"}
-
-
-def git(*args: str, cwd: Path, check: bool = True) -> subprocess.CompletedProcess:
-    result = subprocess.run(["git", *args], cwd=cwd, env=_env(), capture_output=True, text=True)
-    if check and result.returncode != 0:
-        raise AssertionError(f"git {' '.join(args)} failed in {cwd}:\n{result.stdout}{result.stderr}")
-    return result
 
 
 # ─── Template repositories ────────────────────────────────────────────────────
@@ -163,10 +148,6 @@ def clone_project(project: Path, destination: Path) -> Path:
     return destination
 
 
-def answers_of(project: Path) -> dict:
-    return yaml.safe_load((project / ANSWERS_FILE).read_text())
-
-
 def user_answers(project: Path) -> dict:
     """The recorded answers without Copier's own keys (`_commit`, `_src_path`)."""
     return {key: value for key, value in answers_of(project).items() if not key.startswith("_")}
@@ -203,7 +184,7 @@ def run_update(project: Path, data: dict | None = None, vcs_ref: str | None = No
     if vcs_ref is not None:
         command += ["--vcs-ref", vcs_ref]
     command += list(extra_args)
-    result = subprocess.run(command, cwd=project, env=_env(), stdin=subprocess.DEVNULL,
+    result = subprocess.run(command, cwd=project, env=subprocess_env(), stdin=subprocess.DEVNULL,
                             capture_output=True, text=True, timeout=timeout)
     return UpdateResult(result.returncode, ANSI.sub("", result.stdout), ANSI.sub("", result.stderr), command)
 
@@ -440,24 +421,25 @@ class Flavor:
                 return entry.get("language", "python" if self.name == "ament_python" else "cpp")
         raise KeyError(node)
 
+    def _node(self, node: str, language: str | None = None):
+        """The model of one of the flavour's nodes (in `language`, if given), which knows its files."""
+        answers = self.answers
+        answers["nodes"] = [{"name": node, "language": language or self.language(node)}]
+        return rna.build_package({**FIXED_ANSWERS, "description": "x", "license": "Apache-2.0",
+                                  "ros_distro": "noetic" if self.ros1 else "jazzy", **answers}).nodes[0]
+
     def user_file(self, node: str, language: str | None = None) -> str:
-        language = language or self.language(node)
-        if language == "cpp":
-            return f"{PACKAGE}/src/{node}.cpp"
-        return f"{PACKAGE}/scripts/{node}.py" if self.ros1 else f"{PACKAGE}/{PACKAGE}/{node}.py"
+        return f"{PACKAGE}/{self._node(node, language).user_file}"
 
     def base_file(self, node: str, language: str | None = None) -> str:
-        language = language or self.language(node)
-        if language == "cpp":
-            return f"{PACKAGE}/include/{PACKAGE}/{node}_base.{'h' if self.ros1 else 'hpp'}"
-        return f"{PACKAGE}/src/{PACKAGE}/{node}_base.py" if self.ros1 else f"{PACKAGE}/{PACKAGE}/{node}_base.py"
+        return f"{PACKAGE}/{self._node(node, language).base_file}"
 
     def config_file(self, node: str) -> str:
-        return f"{PACKAGE}/config/{node}.yaml"
+        return f"{PACKAGE}/{rna.layout.config_file(node)}"
 
     @property
     def launch_file(self) -> str:
-        return f"{PACKAGE}/launch/{PACKAGE}.launch" + ("" if self.ros1 else ".xml")
+        return f"{PACKAGE}/{rna.layout.launch_file(PACKAGE, 1 if self.ros1 else 2)}"
 
     @property
     def build_file(self) -> str:

@@ -1,0 +1,244 @@
+"""Copier's answers, read once each and checked, turned into the package model.
+
+This is the only code that knows the questions of copier.yml. `build_package(answers)`
+is the entry point: it reads the long form of every answer (mappings) and the short
+forms typed at a prompt, checks them against the ROS rules and raises AnswerError
+naming the question and the rule. The one-node quick questions, the demo and the
+default description live here too.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Mapping
+from functools import cached_property
+
+import yaml
+
+from .. import distros, names, wording
+from ..definitions import Definition
+from ..interfaces import InterfaceType
+from ..licenses import get_license
+from ..model import Node, Package
+from .interfaces import parse_definitions
+from .nodes import Types, parse_node, parse_nodes
+from .shapes import split_list
+
+# The questions whose answers make the package, in the order they are checked.
+QUESTIONS = ("package_name", "description", "maintainer", "maintainer_email", "license",
+             "copyright_holder", "ros_distro", "build_type", "target", "interfaces", "interfaces_location",
+             "nodes")
+
+# Quick one-node questions and the `nodes` key each one fills.
+QUICK_LISTS = {
+    "node_publishers": "publishers",
+    "node_subscribers": "subscribers",
+    "node_service_servers": "service_servers",
+    "node_service_clients": "service_clients",
+    "node_action_servers": "action_servers",
+    "node_action_clients": "action_clients",
+    "node_timers": "timers",
+    "node_parameters": "parameters",
+}
+
+# The demo: a talker and a listener on one topic.
+DEMO_NODES = [
+    {"name": "talker", "publishers": ["chatter:std_msgs/msg/String"], "timers": [0.5]},
+    {"name": "listener", "subscribers": ["chatter:std_msgs/msg/String"]},
+]
+
+_EMAIL = re.compile(r"[^@\s]+@[^@\s]+\.[^@\s]+")
+
+
+class AnswerError(ValueError):
+    """A broken rule in one answer: `str()` is the one line shown to the user."""
+
+    def __init__(self, question: str, message: str) -> None:
+        super().__init__(f"invalid answer to '{question}': {message}")
+        self.question = question
+        self.message = message
+
+
+def _one_line(value: object) -> str:
+    if not isinstance(value, str) or not value.strip() or "\n" in value.strip():
+        raise ValueError("give one line of text")
+    return value.strip()
+
+
+class Answers:
+    """The answers given so far, each read once, on first use."""
+
+    def __init__(self, answers: Mapping) -> None:
+        self.raw = dict(answers)
+        if self.ros == 1 and not self.raw.get("build_type"):
+            self.raw["build_type"] = "catkin"  # not asked, so not in the answers file either
+
+    @property
+    def ros(self) -> int:
+        return distros.generation(self.raw.get("ros_distro"))
+
+    # --- one reader per question; each raises ValueError naming the rule
+
+    def _package_name(self) -> str:
+        value = self.raw.get("package_name")
+        error = names.package_name_error(value)
+        if error:
+            raise ValueError(error)
+        return value
+
+    def _license(self):
+        return get_license(self.raw.get("license"))
+
+    def _maintainer_email(self) -> str:
+        value = self.raw.get("maintainer_email")
+        if not isinstance(value, str) or not _EMAIL.fullmatch(value.strip()):
+            raise ValueError(f"'{value}' is not an e-mail address")
+        return value.strip()
+
+    def _ros_distro(self) -> str:
+        value = self.raw.get("ros_distro")
+        if value not in distros.DISTROS:
+            raise ValueError(f"'{value}' is not one of {', '.join(distros.DISTROS)}")
+        return value
+
+    def _build_type(self) -> str:
+        value, allowed = self.raw.get("build_type"), distros.BUILD_TYPES_OF[self.ros]
+        if value not in allowed:
+            raise ValueError(f"'{value}' is not one of {', '.join(allowed)} for ROS {self.ros}")
+        return value
+
+    def _target(self) -> str:
+        value = self.raw.get("target")
+        if value not in (None, "package", "node"):
+            raise ValueError(f"'{value}' is not package or node")
+        if value == "node" and self.raw.get("interfaces"):
+            raise ValueError("a node added to an existing package cannot define interfaces: name "
+                             "existing ones, or generate a package")
+        return value or "package"
+
+    def _interfaces_location(self) -> str:
+        value = self.raw.get("interfaces_location")
+        if value not in (None, "separate", "package"):
+            raise ValueError(f"'{value}' is not separate or package")
+        build_type = self.raw.get("build_type")
+        if value == "package" and build_type not in distros.BUILDS_INTERFACES:
+            raise ValueError(f"an {build_type} package cannot build interfaces: keep them separate")
+        return value or "separate"
+
+    @property
+    def interfaces_home(self) -> str:
+        """Where the package's own interfaces live: <package>_interfaces, or the package itself."""
+        package = self.raw.get("package_name") or "pkg"
+        return package if self.raw.get("interfaces_location") == "package" else f"{package}_interfaces"
+
+    @cached_property
+    def definitions(self) -> tuple[Definition, ...]:
+        return parse_definitions(self.raw.get("interfaces"), package=self.interfaces_home, ros=self.ros)
+
+    @cached_property
+    def types(self) -> Types:
+        """How node answers read types: with the interfaces the answers define."""
+        home = self.interfaces_home
+        own = {(d.kind, d.name): InterfaceType(home, d.kind, d.name, self.ros) for d in self.definitions}
+        return Types(self.ros, own)
+
+    @cached_property
+    def nodes(self) -> tuple[Node, ...]:
+        nodes = parse_nodes(self.raw.get("nodes"), package=self.raw.get("package_name") or "pkg",
+                            build_type=self.raw.get("build_type"), types=self.types)
+        if self.raw.get("target") == "node" and len(nodes) != 1:
+            raise ValueError("a node added to an existing package is one node: give exactly one")
+        return nodes
+
+    def _quick_list(self, question: str) -> None:
+        """A one-node quick question: comma-separated short forms of one `nodes` key."""
+        language = distros.node_language(self.raw.get("build_type"), self.raw.get("node_language"))
+        name = self.raw.get("node_name") if not names.node_name_error(self.raw.get("node_name")) else "node"
+        parse_node({"name": name, "language": language, QUICK_LISTS[question]: self.raw.get(question)},
+                   package="pkg", build_type=self.raw.get("build_type"), types=Types(self.ros))
+
+    def _node_name(self) -> None:
+        error = names.node_name_error(self.raw.get("node_name"))
+        if error:
+            raise ValueError(error)
+
+    def read(self, question: str):
+        """The answer to `question`, read and checked; ValueError names the rule broken."""
+        if question in ("description", "maintainer", "copyright_holder"):
+            return _one_line(self.raw.get(question))
+        if question in ("interfaces", "nodes"):
+            return getattr(self, "definitions" if question == "interfaces" else question)
+        if question in QUICK_LISTS:
+            return self._quick_list(question)
+        return getattr(self, f"_{question}")()
+
+    def check(self, question: str) -> None:
+        try:
+            self.read(question)
+        except ValueError as error:
+            raise AnswerError(question, str(error)) from None
+
+    @property
+    def package(self) -> Package:
+        """The model; AnswerError on the first broken rule."""
+        read = {}
+        for question in QUESTIONS:
+            try:
+                read[question] = self.read(question)
+            except ValueError as error:
+                raise AnswerError(question, str(error)) from None
+        year = self.raw.get("copyright_year")
+        if isinstance(year, bool) or not isinstance(year, int) or not 1970 <= year <= 9999:
+            raise AnswerError("copyright_year", f"'{year}' is not a year")
+        return Package(
+            name=read["package_name"],
+            description=read["description"],
+            maintainer=read["maintainer"],
+            maintainer_email=read["maintainer_email"],
+            license=read["license"],
+            copyright_holder=read["copyright_holder"],
+            copyright_year=year,
+            ros_distro=read["ros_distro"],
+            build_type=read["build_type"],
+            nodes=read["nodes"],
+            definitions=read["interfaces"],
+            interfaces_location=read["interfaces_location"],
+            target=read["target"],
+        )
+
+    @property
+    def default_description(self) -> str:
+        """What the nodes answered so far do, as the package's default description."""
+        try:
+            return wording.describe_nodes(self.nodes)
+        except ValueError:
+            return "ROS nodes"
+
+    @property
+    def default_nodes(self) -> str:
+        """The `nodes` default as YAML: the node described by the quick questions, or the demo."""
+        if self.raw.get("node_setup") != "one":
+            return yaml.safe_dump(DEMO_NODES, sort_keys=False)
+        node = {"name": self.raw.get("node_name"),
+                "language": distros.node_language(self.raw.get("build_type"), self.raw.get("node_language"))}
+        for question, key in QUICK_LISTS.items():
+            if self.raw.get(question):
+                node[key] = split_list(self.raw[question])
+        return yaml.safe_dump([node], sort_keys=False)
+
+
+def build_package(answers: Mapping) -> Package:
+    """Check every answer and build the model; raises AnswerError on the first broken rule."""
+    return Answers(answers).package
+
+
+def question_error(question: str, answers: Mapping) -> str | None:
+    """The error for one question given the answers so far, or None: for Copier validators."""
+    try:
+        Answers(answers).read(question)
+    except ValueError as error:
+        return str(error)
+    return None
+
+
+__all__ = ["QUESTIONS", "QUICK_LISTS", "AnswerError", "Answers", "build_package", "question_error", "split_list"]

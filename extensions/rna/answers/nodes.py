@@ -1,0 +1,298 @@
+"""The `nodes` answer: each node, in the long form (mappings) or the short forms typed at a prompt.
+
+`cmd_vel:geometry_msgs/msg/Twist`, `rate:double=10.0` or `0.5` read the same as their
+mappings; every rule broken raises ValueError with a sentence that starts with the node.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+
+import yaml
+
+from .. import distros, names
+from ..interfaces import InterfaceType, parse_interface
+from ..model import BASE_MEMBERS, Action, Node, Qos, Service, Timer, Topic
+from ..parameters import Parameter, ParameterType, coerce_default, infer_type, parse_type
+from .shapes import as_list, check_keys, load_yaml
+
+QOS_PROFILES = {"sensor_data": 5}
+
+
+@dataclass(frozen=True)
+class Types:
+    """How endpoint types are read: the ROS generation, and this package's own interfaces."""
+
+    ros: int = 2
+    own: Mapping[tuple[str, str], InterfaceType] = field(default_factory=dict)
+
+    def parse(self, text: object, kind: str) -> InterfaceType:
+        """`pkg/kind/Name`, `pkg/Name`, or the bare `Name` of an interface defined here."""
+        if isinstance(text, str) and (kind, text.strip()) in self.own:
+            return self.own[(kind, text.strip())]
+        return parse_interface(text, kind, self.ros)
+
+
+def _split_short(text: str, fields: int) -> list[str]:
+    """'topic:type:qos' -> parts; the type itself never contains ':'."""
+    return [part.strip() for part in text.split(":", fields - 1)]
+
+
+def _parse_qos(value: object, what: str) -> Qos:
+    if value is None or value == "":
+        return Qos()
+    if isinstance(value, bool):
+        raise ValueError(f"{what}: qos must be a history depth (e.g. 10) or 'sensor_data'")
+    if isinstance(value, int) or (isinstance(value, str) and value.isdigit()):
+        depth = int(value)
+        if not 1 <= depth <= 10000:
+            raise ValueError(f"{what}: qos depth {depth} must be between 1 and 10000")
+        return Qos(depth)
+    if value in QOS_PROFILES:
+        return Qos(QOS_PROFILES[value], value)
+    raise ValueError(f"{what}: qos must be a history depth (e.g. 10) or 'sensor_data', not '{value}'")
+
+
+def _parse_id(given: object, ros_name: str, what: str) -> str:
+    if given is not None:
+        error = names.identifier_error(given, f"{what}: id")
+        if error:
+            raise ValueError(error)
+        return str(given)
+    return names.identifier_from_name(ros_name)
+
+
+def _parse_topic(item: object, role: str, types: Types) -> Topic:
+    if isinstance(item, str):
+        parts = _split_short(item, 3)
+        if len(parts) < 2:
+            raise ValueError(f"{role} '{item}': write it as topic:type, e.g. chatter:std_msgs/msg/String")
+        item = dict(zip(("topic", "type", "qos"), parts, strict=False))
+    if not isinstance(item, Mapping):
+        raise ValueError(f"a {role} must be 'topic:type' or a mapping with topic and type")
+    check_keys(item, ("topic", "type", "qos", "id"), role)
+    topic = item.get("topic")
+    what = f"{role} '{topic}'"
+    error = names.topic_name_error(topic, "topic")
+    if error:
+        raise ValueError(f"{role}: {error}")
+    interface = types.parse(item.get("type"), "msg")
+    return Topic(role, topic, interface, _parse_qos(item.get("qos"), what), _parse_id(item.get("id"), topic, what))
+
+
+def _parse_service_or_action(item: object, cls: type, kind: str, role: str, types: Types):
+    what = f"{'service' if kind == 'srv' else 'action'} {role}"
+    example = "reset:std_srvs/srv/Trigger" if kind == "srv" else "fibonacci:test_msgs/action/Fibonacci"
+    if isinstance(item, str):
+        parts = _split_short(item, 2)
+        if len(parts) < 2:
+            raise ValueError(f"{what} '{item}': write it as name:type, e.g. {example}")
+        item = dict(zip(("name", "type"), parts, strict=True))
+    if not isinstance(item, Mapping):
+        raise ValueError(f"a {what} must be 'name:type' or a mapping with name and type")
+    check_keys(item, ("name", "type", "id"), what)
+    name = item.get("name")
+    error = names.topic_name_error(name, "service" if kind == "srv" else "action")
+    if error:
+        raise ValueError(f"{what}: {error}")
+    interface = types.parse(item.get("type"), kind)
+    return cls(role, name, interface, _parse_id(item.get("id"), name, f"{what} '{name}'"))
+
+
+def _parse_timer(item: object) -> Timer:
+    if isinstance(item, (int, float)) and not isinstance(item, bool):
+        item = {"period": item}
+    elif isinstance(item, str):
+        parts = _split_short(item, 2)
+        item = {"period": parts[0]} if len(parts) == 1 else {"name": parts[0], "period": parts[1]}
+    if not isinstance(item, Mapping):
+        raise ValueError("a timer must be a period in seconds, 'name:period' or a mapping")
+    check_keys(item, ("name", "period"), "timer")
+    name = item.get("name", "timer")
+    error = names.identifier_error(name, "timer")
+    if error:
+        raise ValueError(error)
+    period = item.get("period")
+    try:
+        period = float(period)
+    except (TypeError, ValueError):
+        raise ValueError(f"timer '{name}': period '{period}' is not a number of seconds") from None
+    if not 0 < period <= 86400:
+        raise ValueError(f"timer '{name}': period must be more than 0 s and at most a day")
+    return Timer(name, period)
+
+
+_SHORT_PARAMETER = re.compile(r"(?P<name>[^:=\s]+)\s*(?::\s*(?P<type>[^=\s]+))?\s*(?:=(?P<default>.*))?", re.S)
+
+
+def _parse_parameter(item: object) -> Parameter:
+    if isinstance(item, str):
+        match = _SHORT_PARAMETER.fullmatch(item.strip())
+        if not match:
+            raise ValueError(f"parameter '{item}': write it as name:type=default, e.g. rate:double=10.0")
+        item = {"name": match["name"]}
+        if match["type"]:
+            item["type"] = match["type"]
+        if match["default"] is not None:
+            try:
+                item["default"] = yaml.safe_load(match["default"])
+            except yaml.YAMLError:
+                raise ValueError(f"parameter '{match['name']}': cannot read the default '{match['default']}'") from None
+    if not isinstance(item, Mapping):
+        raise ValueError("a parameter must be 'name:type=default' or a mapping with name, type and default")
+    check_keys(item, ("name", "type", "default", "description", "range", "read_only"), "parameter")
+    name = item.get("name")
+    error = names.parameter_name_error(name)
+    if error:
+        raise ValueError(error)
+    what = f"parameter '{name}'"
+    try:
+        if item.get("type") is not None:
+            ptype = parse_type(item["type"])
+        elif item.get("default") is not None:
+            ptype = infer_type(item["default"])
+        else:
+            raise ValueError("give a type or a default")
+        default = coerce_default(item.get("default"), ptype)
+    except ValueError as error:
+        raise ValueError(f"{what}: {error}") from None
+    if ptype.is_array and not default:
+        raise ValueError(f"{what}: array parameters need a non-empty default")
+    description = item.get("description") or ""
+    if not isinstance(description, str) or "\n" in description:
+        raise ValueError(f"{what}: description must be one line of text")
+    read_only = item.get("read_only", False)
+    if not isinstance(read_only, bool):
+        raise ValueError(f"{what}: read_only must be true or false")
+    value_range = _parse_range(item.get("range"), ptype, default, what)
+    return Parameter(name, ptype, default, description.strip(), value_range, read_only)
+
+
+def _parse_range(value: object, ptype: ParameterType, default: object, what: str):
+    if value is None:
+        return None
+    if not ptype.is_numeric:
+        raise ValueError(f"{what}: only int and double parameters take a range")
+    if isinstance(value, Mapping):
+        check_keys(value, ("min", "max", "step"), f"{what} range")
+        value = [value.get("min"), value.get("max"), value.get("step", 0)]
+    if not isinstance(value, list) or len(value) not in (2, 3):
+        raise ValueError(f"{what}: range must be [min, max] or [min, max, step]")
+    low, high, *rest = value
+    step = rest[0] if rest else 0
+    for bound in (low, high, step):
+        if isinstance(bound, bool) or not isinstance(bound, (int, float)):
+            raise ValueError(f"{what}: range bounds must be numbers")
+        if ptype.scalar == "int" and not isinstance(bound, int):
+            raise ValueError(f"{what}: an int parameter needs whole-number range bounds")
+    if low > high:
+        raise ValueError(f"{what}: range minimum {low} is above its maximum {high}")
+    if step < 0:
+        raise ValueError(f"{what}: range step must not be negative")
+    if not low <= default <= high:
+        raise ValueError(f"{what}: default {default} is outside the range [{low}, {high}]")
+    cast = int if ptype.scalar == "int" else float
+    return (cast(low), cast(high), cast(step))
+
+
+def _check_unique(node_label: str, items: Iterable[tuple[str, str]]) -> None:
+    """items: (name, label) pairs; a name used twice is an error naming both uses."""
+    seen: dict[str, str] = {}
+    for name, label in items:
+        if name in seen:
+            raise ValueError(f"{node_label}: {seen[name]} and {label} both use the name '{name}'")
+        seen[name] = label
+
+
+_NODE_KEYS = ("name", "language", "description", "lifecycle", "component", "publishers", "subscribers",
+              "service_servers", "service_clients", "action_servers", "action_clients", "timers",
+              "parameters")
+
+
+def parse_node(item: object, *, package: str, build_type: str, types: Types) -> Node:
+    """One entry of `nodes`; raises ValueError with a message that starts with the node."""
+    if isinstance(item, str):
+        item = {"name": item}
+    if not isinstance(item, Mapping):
+        raise ValueError("each node must be a mapping with at least a name")
+    name = item.get("name")
+    error = names.node_name_error(name)
+    if error:
+        raise ValueError(error)
+    label = f"node '{name}'"
+    ros = types.ros
+    try:
+        check_keys(item, _NODE_KEYS, "node")
+        language = distros.LANGUAGES.get(str(item.get("language") or distros.default_language(build_type)).lower())
+        if language is None:
+            raise ValueError(f"language '{item.get('language')}' is not cpp or python")
+        error = distros.language_error(build_type, language)
+        if error:
+            raise ValueError(error)
+        flags = {}
+        for flag in ("lifecycle", "component"):
+            flags[flag] = item.get(flag, False)
+            if not isinstance(flags[flag], bool):
+                raise ValueError(f"{flag} must be true or false")
+        if ros == 1 and (flags["lifecycle"] or flags["component"]):
+            raise ValueError("lifecycle and component nodes are ROS 2 features")
+        if flags["component"] and language != "cpp":
+            raise ValueError("components are C++ nodes (rclcpp_components)")
+        description = item.get("description") or ""
+        if not isinstance(description, str) or "\n" in description.strip():
+            raise ValueError("description must be one line of text")
+        node = Node(
+            name=name,
+            language=language,
+            package=package,
+            ros=ros,
+            description=description.strip(),
+            lifecycle=flags["lifecycle"],
+            component=flags["component"],
+            publishers=tuple(_parse_topic(x, "publisher", types)
+                             for x in as_list(item.get("publishers"), "publishers")),
+            subscribers=tuple(_parse_topic(x, "subscriber", types)
+                              for x in as_list(item.get("subscribers"), "subscribers")),
+            service_servers=tuple(_parse_service_or_action(x, Service, "srv", "server", types)
+                                  for x in as_list(item.get("service_servers"), "service_servers")),
+            service_clients=tuple(_parse_service_or_action(x, Service, "srv", "client", types)
+                                  for x in as_list(item.get("service_clients"), "service_clients")),
+            action_servers=tuple(_parse_service_or_action(x, Action, "action", "server", types)
+                                 for x in as_list(item.get("action_servers"), "action_servers")),
+            action_clients=tuple(_parse_service_or_action(x, Action, "action", "client", types)
+                                 for x in as_list(item.get("action_clients"), "action_clients")),
+            timers=tuple(_parse_timer(x) for x in as_list(item.get("timers"), "timers")),
+            parameters=tuple(_parse_parameter(x) for x in as_list(item.get("parameters"), "parameters")),
+        )
+        _check_node_names(node, label)
+    except ValueError as error:
+        raise ValueError(f"{label}: {error}") from None
+    return node
+
+
+def _check_node_names(node: Node, label: str) -> None:
+    """Every ROS name and every generated member and callback is used once per node."""
+    _check_unique(label, ((t.topic, t.label) for t in node.publishers))
+    _check_unique(label, ((t.topic, t.label) for t in node.subscribers))
+    _check_unique(label, ((s.name, s.label) for s in node.service_servers + node.service_clients))
+    _check_unique(label, ((a.name, a.label) for a in node.actions))
+    _check_unique(label, ((p.name, f"parameter '{p.name}'") for p in node.parameters))
+    _check_unique(label, ((e.member, e.label) for e in node.endpoints))
+    methods = [(method, endpoint.label) for endpoint in node.endpoints for method in endpoint.methods]
+    methods.extend((name, "a lifecycle callback") for name in names.LIFECYCLE_CALLBACKS)
+    _check_unique(label, methods)
+    # ROS 1 nodes keep parameters in members named after them.
+    _check_unique(label, [*((e.member, e.label) for e in node.endpoints), *methods,
+                          *((name, "a member of the base class") for name in BASE_MEMBERS),
+                          *((p.name, f"parameter '{p.name}'") for p in node.parameters)])
+
+
+def parse_nodes(value: object, *, package: str, build_type: str, types: Types) -> tuple[Node, ...]:
+    value = load_yaml(value)
+    if not isinstance(value, list) or not value:
+        raise ValueError("give a list with at least one node")
+    nodes = tuple(parse_node(item, package=package, build_type=build_type, types=types) for item in value)
+    _check_unique("nodes", ((node.name, f"node '{node.name}'") for node in nodes))
+    return nodes

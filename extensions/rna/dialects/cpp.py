@@ -1,0 +1,125 @@
+"""C++ as both ROS generations spell it: include blocks, literals and the starter code's samples."""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterable
+
+from .. import features
+from ..parameters import ParameterType
+
+_SCALARS = {"bool": "bool", "int": "int64_t", "double": "double", "string": "std::string"}
+
+# Starter code's values for a std_msgs `data` field, changing with a counter.
+_SAMPLES = {
+    "string": '"Hello World: " + std::to_string({count})',
+    "int": "static_cast<decltype({msg}.data)>({count})",
+    "float": "static_cast<decltype({msg}.data)>({count})",
+    "bool": "{count} % 2 == 0",
+}
+
+
+def include_block(headers: Iterable[str]) -> str:
+    """Headers ('<chrono>' or 'rclcpp/rclcpp.hpp') -> the #include block.
+
+    Standard headers first, then the others in quotes, as in the ROS tutorials of
+    both generations (cpplint counts <ros/ros.h> as a C system header).
+    """
+    standard = sorted({h for h in headers if h.startswith("<")})
+    others = sorted({h for h in headers if not h.startswith("<")})
+    blocks = []
+    if standard:
+        blocks.append("\n".join(f"#include {h}" for h in standard))
+    if others:
+        blocks.append("\n".join(f'#include "{h}"' for h in others))
+    return "\n\n".join(blocks)
+
+
+def literal(value: object, ptype: ParameterType, scalars: dict[str, str] = _SCALARS) -> str:
+    """A C++ expression of the parameter type's C++ type."""
+    if ptype.is_array:
+        items = ", ".join(literal(item, ParameterType(ptype.scalar), scalars) for item in value)
+        return f"std::vector<{scalars[ptype.scalar]}>{{{items}}}"
+    if ptype.scalar == "bool":
+        return "true" if value else "false"
+    if ptype.scalar == "int":
+        return str(value)
+    if ptype.scalar == "double":
+        return repr(float(value))
+    return string(value)
+
+
+def string(text: str) -> str:
+    """A C++ string literal: a JSON string literal is also a valid C++ one."""
+    return json.dumps(text, ensure_ascii=False)
+
+
+class CppDialect:
+    """What ROS 1 and ROS 2 C++ code share."""
+
+    SCALARS = _SCALARS
+    string = staticmethod(string)
+
+    def __init__(self, node) -> None:
+        self.node = node
+
+    def parameter_type(self, parameter) -> str:
+        scalar = self.SCALARS[parameter.type.scalar]
+        return f"std::vector<{scalar}>" if parameter.type.is_array else scalar
+
+    def parameter_default(self, parameter) -> str:
+        return literal(parameter.default, parameter.type, self.SCALARS)
+
+    def _needs(self, which: str) -> list[str]:
+        return [item for need in features.needs(self.node) for item in getattr(need, which)]
+
+    def _starter_headers(self) -> list[str]:
+        """What the starter code of the user's file uses besides the node's own needs."""
+        node = self.node
+        headers = [self.header(t) for t in node.starter_interfaces]
+        if node.driver_timer:
+            if node.publishers:
+                headers.append("<cstddef>")
+            if any(t.type.data_field in ("string", "int", "float") for t in node.publishers):
+                headers.append("<string>")  # std::to_string
+        if any(t.type.data_field in ("int", "float") for t in node.subscribers):
+            headers.append("<string>")
+        return headers
+
+    @property
+    def base_includes(self) -> str:
+        """Includes of the generated base class header."""
+        return include_block([*self._needs("base"), *(self.header(t) for t in self.node.interfaces)])
+
+    @property
+    def node_includes(self) -> str:
+        """Includes of the user's src/<node>.cpp: what its starter code uses."""
+        own = f"{self.node.package}/{self.node.base_name}.{self.HEADER_EXTENSION}"
+        return include_block([own, *self._needs("user"), *self._starter_headers()])
+
+    @property
+    def message_variables(self) -> dict:
+        """The starter code's variable for each publisher's message: msg, or <id>_msg for several."""
+        publishers = self.node.publishers
+        if len(publishers) == 1:
+            return {publishers[0]: "msg"}
+        return {topic: f"{topic.id}_msg" for topic in publishers}
+
+    @staticmethod
+    def sample(data_field: str, count: str, msg: str = "msg") -> str:
+        """A C++ expression giving a std_msgs `data` field a value that changes with `count`."""
+        return _SAMPLES[data_field].format(count=count, msg=msg)
+
+    @staticmethod
+    def format(data_field: str) -> str:
+        """The printf conversion that prints a `data` field (quoted for text)."""
+        return '\\"%s\\"' if data_field == "string" else "%s"
+
+    @staticmethod
+    def format_arg(data_field: str, expression: str) -> str:
+        """The printf argument for format()."""
+        if data_field == "string":
+            return f"{expression}.c_str()"
+        if data_field == "bool":
+            return f'{expression} ? "true" : "false"'
+        return f"std::to_string({expression}).c_str()"

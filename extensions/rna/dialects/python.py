@@ -1,0 +1,157 @@
+"""Python as both ROS generations spell it: literals, import blocks and type names.
+
+Import blocks are ordered the way ament_flake8's import-order check wants them
+(google style: the standard library first, then one group per top-level package, each
+sorted by module, as in ros2/examples).
+"""
+
+from __future__ import annotations
+
+import sys
+import textwrap
+from collections import Counter, defaultdict
+from collections.abc import Iterable
+from functools import cached_property
+
+from .. import features, names
+
+# Names the generated Python files import or define besides interface types.
+RESERVED = frozenset({
+    "ActionClient", "ActionServer", "CancelResponse", "ExternalShutdownException",
+    "FloatingPointRange", "GoalResponse", "GoalStatus", "IntegerRange", "MultiThreadedExecutor",
+    "Node", "ParameterDescriptor", "ReentrantCallbackGroup", "State", "TransitionCallbackReturn",
+})
+
+# Starter code's values for a std_msgs `data` field, changing with a counter.
+_SAMPLES = {
+    "string": "f'Hello World: {{{count}}}'",
+    "int": "{count}",
+    "float": "float({count})",
+    "bool": "{count} % 2 == 0",
+}
+
+
+def literal(value: object) -> str:
+    """A Python literal in the quote style ROS's flake8 settings want (single quotes)."""
+    if isinstance(value, bool):
+        return "True" if value else "False"
+    if isinstance(value, float):
+        return repr(value)
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, str):
+        if "'" in value and '"' not in value:
+            return '"' + value.replace("\\", "\\\\") + '"'
+        return "'" + value.replace("\\", "\\\\").replace("'", "\\'") + "'"
+    if isinstance(value, list):
+        return "[" + ", ".join(literal(item) for item in value) + "]"
+    raise TypeError(f"no Python literal for {value!r}")
+
+
+def text_literal(text: str, column: int, indent: int, width: int = 99) -> str:
+    """A string literal starting at `column` that fits in `width` columns.
+
+    Too long, it becomes parenthesised parts, one per line, indented by `indent`.
+    """
+    spelled = literal(text)
+    if column + len(spelled) + 1 <= width:
+        return spelled
+    chunks = textwrap.wrap(text, width - indent - 4, drop_whitespace=False)
+    return "(\n" + "\n".join(" " * indent + literal(chunk) for chunk in chunks) + ")"
+
+
+def _sort_key(module: str) -> tuple[str, str]:
+    return (module.lower(), module)
+
+
+def _top(module: str) -> str:
+    return module.split(".")[0]
+
+
+def import_block(imports: Iterable[str]) -> str:
+    """'module' or 'module:Name' (Name may be 'Name as Alias') -> the import block."""
+    plain: set[str] = set()
+    from_imports: dict[str, set[str]] = defaultdict(set)
+    for item in imports:
+        module, _, name = item.partition(":")
+        if name:
+            from_imports[module].add(name)
+        else:
+            plain.add(module)
+    statements = [(module, f"import {module}") for module in plain]
+    statements += [
+        (module, f"from {module} import {', '.join(sorted(names, key=_sort_key))}")
+        for module, names in from_imports.items()
+    ]
+    statements.sort(key=lambda item: (_sort_key(item[0]), item[1].startswith("from")))
+    stdlib = [line for module, line in statements if _top(module) in sys.stdlib_module_names]
+    groups: dict[str, list[str]] = defaultdict(list)
+    for module, line in statements:
+        if _top(module) not in sys.stdlib_module_names:
+            groups[_top(module)].append(line)
+    blocks = ["\n".join(stdlib)] if stdlib else []
+    blocks += ["\n".join(lines) for lines in groups.values()]
+    return "\n\n".join(blocks)
+
+
+class PythonDialect:
+    """What ROS 1 and ROS 2 Python code share."""
+
+    def __init__(self, node) -> None:
+        self.node = node
+
+    literal = staticmethod(literal)
+    text_literal = staticmethod(text_literal)
+
+    @cached_property
+    def types(self) -> dict:
+        """The name of each interface type in the node's Python files.
+
+        A type whose name clashes with another type, the node's classes or an
+        imported helper is imported under its package's name: NavMsgsOdometry.
+        """
+        node = self.node
+        taken = {node.class_name, node.base_class_name, *RESERVED}
+        counts = Counter(t.name for t in node.interfaces)
+        return {
+            t: names.snake_to_camel(t.package) + t.name if counts[t.name] > 1 or t.name in taken else t.name
+            for t in node.interfaces
+        }
+
+    def type(self, interface) -> str:
+        return self.types[interface]
+
+    @staticmethod
+    def module(interface) -> str:
+        return f"{interface.package}.{interface.kind}"
+
+    def _import(self, interface, part: str = "") -> str:
+        """The import of a type (or a part of it, ROS 1: TriggerResponse), aliased like the type."""
+        alias, name = self.types[interface] + part, interface.name + part
+        return f"{self.module(interface)}:{name}" + ("" if alias == name else f" as {alias}")
+
+    def _needs(self, which: str) -> list[str]:
+        return [item for need in features.needs(self.node) for item in getattr(need, which)]
+
+    @property
+    def message_variables(self) -> dict:
+        """The starter code's variable for each publisher's message: msg, or <id>_msg for several."""
+        publishers = self.node.publishers
+        if len(publishers) == 1:
+            return {publishers[0]: "msg"}
+        return {topic: f"{topic.id}_msg" for topic in publishers}
+
+    @property
+    def base_module(self) -> str:
+        """What the user's file imports the base class from."""
+        return f"{self.node.package}.{self.node.base_name}"
+
+    @staticmethod
+    def sample(data_field: str, count: str) -> str:
+        """An expression giving a std_msgs `data` field a value that changes with `count`."""
+        return _SAMPLES[data_field].format(count=count)
+
+    @staticmethod
+    def format(data_field: str, expression: str) -> str:
+        """The f-string part that prints a `data` field: quoted for text."""
+        return f'"{{{expression}}}"' if data_field == "string" else f"{{{expression}}}"

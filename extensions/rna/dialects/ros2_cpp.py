@@ -1,0 +1,76 @@
+"""ROS 2 C++ (rclcpp): types, headers, QoS, timer periods, parameter descriptors, CMake targets."""
+
+from __future__ import annotations
+
+from .. import names
+from .cpp import CppDialect
+
+# The CMake targets of the client libraries; other packages export ${<pkg>_TARGETS}.
+_CMAKE_TARGETS = {
+    "rclcpp": "rclcpp::rclcpp",
+    "rclcpp_action": "rclcpp_action::rclcpp_action",
+    "rclcpp_components": "rclcpp_components::component",
+    "rclcpp_lifecycle": "rclcpp_lifecycle::rclcpp_lifecycle",
+}
+
+
+class Ros2Cpp(CppDialect):
+    HEADER_EXTENSION = "hpp"
+
+    @staticmethod
+    def header(interface) -> str:
+        return f"{interface.package}/{interface.kind}/{names.camel_to_snake(interface.name)}.hpp"
+
+    @staticmethod
+    def type(interface) -> str:
+        return f"{interface.package}::{interface.kind}::{interface.name}"
+
+    def part(self, interface, part: str) -> str:
+        """A service's Request/Response or an action's Goal/Result/Feedback type."""
+        return f"{self.type(interface)}::{part}"
+
+    @property
+    def header_guard(self) -> str:
+        return f"{self.node.package}__{self.node.base_name}_HPP_".upper()
+
+    @staticmethod
+    def goal_handle(action) -> str:
+        """The alias the base class declares for an action's goal handle type."""
+        return names.snake_to_camel(action.id) + ("GoalHandle" if action.role == "server" else "ClientGoalHandle")
+
+    @staticmethod
+    def qos(qos) -> str:
+        return "rclcpp::SensorDataQoS()" if qos.profile == "sensor_data" else str(qos.depth)
+
+    @staticmethod
+    def period(timer) -> str:
+        """The period as a std::chrono duration with an exact integer count."""
+        for unit, scale in (("seconds", 1), ("milliseconds", 1e3), ("microseconds", 1e6)):
+            count = timer.period * scale
+            if abs(count - round(count)) < 1e-9 * scale:
+                return f"std::chrono::{unit}({round(count)})"
+        return f"std::chrono::nanoseconds({round(timer.period * 1e9)})"
+
+    def descriptor(self, parameter, name: str = "descriptor") -> str:
+        """Statements that fill a ParameterDescriptor named `name` (4-space indented)."""
+        lines = [f"rcl_interfaces::msg::ParameterDescriptor {name};"]
+        if parameter.description:
+            lines.append(f"{name}.description = {self.string(parameter.description)};")
+        if parameter.read_only:
+            lines.append(f"{name}.read_only = true;")
+        if parameter.range:
+            low, high, step = parameter.range
+            kind = parameter.range_kind
+            lines += [f"{name}.{kind}.resize(1);",
+                      f"{name}.{kind}[0].from_value = {low!r};",
+                      f"{name}.{kind}[0].to_value = {high!r};",
+                      f"{name}.{kind}[0].step = {step!r};"]
+        return "\n    ".join(lines)
+
+    @property
+    def cmake_targets(self) -> list[str]:
+        """What the node's target links: the client library targets, ${<pkg>_TARGETS} otherwise."""
+        # The package's own interfaces: rosidl_get_typesupport_target() names them.
+        own = '"${cpp_typesupport_target}"'
+        return [own if dep == self.node.package else _CMAKE_TARGETS.get(dep, f"${{{dep}_TARGETS}}")
+                for dep in self.node.dependencies]

@@ -1,0 +1,43 @@
+"""ROS 2 Python (rclpy): imports, QoS, parameter descriptors and the starter code's samples."""
+
+from __future__ import annotations
+
+from .python import PythonDialect, import_block, literal
+
+
+class Ros2Python(PythonDialect):
+    @property
+    def base_imports(self) -> str:
+        """Imports of the generated <node>_base.py."""
+        return import_block([*(self._import(t) for t in self.node.interfaces), *self._needs("base")])
+
+    @property
+    def node_imports(self) -> str:
+        """Imports of the user's <node>.py: what its starter code uses."""
+        node = self.node
+        return import_block([*self._needs("user"), f"{self.base_module}:{node.base_class_name}",
+                             *(self._import(t) for t in node.starter_interfaces)])
+
+    @staticmethod
+    def qos(qos) -> str:
+        return "qos_profile_sensor_data" if qos.profile == "sensor_data" else str(qos.depth)
+
+    @staticmethod
+    def period(timer) -> str:
+        return str(timer.period)
+
+    @staticmethod
+    def descriptor(parameter, indent: int = 12) -> str:
+        """The ParameterDescriptor argument of declare_parameter(), one field per line."""
+        fields = []
+        if parameter.description:
+            fields.append(f"description={literal(parameter.description)}")
+        if parameter.read_only:
+            fields.append("read_only=True")
+        if parameter.range:
+            low, high, step = (literal(value) for value in parameter.range)
+            range_class = "IntegerRange" if parameter.range_kind == "integer_range" else "FloatingPointRange"
+            fields.append(f"{parameter.range_kind}=[\n{' ' * (indent + 8)}"
+                          f"{range_class}(from_value={low}, to_value={high}, step={step})]")
+        pad = " " * (indent + 4)
+        return "ParameterDescriptor(\n" + ",\n".join(pad + field for field in fields) + ")"

@@ -1,0 +1,101 @@
+"""What each feature of a node needs, per dialect: the packages, and what its files include.
+
+One table per dialect (ROS 2 C++, ROS 2 Python, ROS 1 C++, ROS 1 Python). A feature's
+packages go to package.xml and the build files (rna.model); its headers or imports go to
+the node's generated base file or to the user's file with the starter code (rna.dialects).
+Headers are written '<chrono>' (standard) or 'rclcpp/rclcpp.hpp'; imports 'module' or
+'module:Name'.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Needs:
+    packages: tuple[str, ...] = ()
+    base: tuple[str, ...] = ()  # included or imported by the generated <node>_base file
+    user: tuple[str, ...] = ()  # included or imported by the user's file (its starter code)
+
+
+def node_features(node) -> frozenset[str]:
+    """The features of a node, named as in the tables below."""
+    parameters = node.parameters
+    found = {
+        "node": True,
+        "lifecycle": node.lifecycle,
+        "plain": not node.lifecycle,
+        "component": node.component,
+        "executable": not node.component,
+        "timers": bool(node.timers),
+        "services": bool(node.service_servers or node.service_clients),
+        "actions": bool(node.actions),
+        "action_servers": bool(node.action_servers),
+        "action_clients": bool(node.action_clients),
+        "sensor_data_qos": any(t.qos.profile == "sensor_data" for t in node.publishers + node.subscribers),
+        "parameter_descriptors": any(p.has_descriptor for p in parameters),
+        "integer_ranges": any(p.range and p.type.scalar == "int" for p in parameters),
+        "float_ranges": any(p.range and p.type.scalar == "double" for p in parameters),
+        "string_parameters": any(p.type.scalar == "string" for p in parameters),
+        "array_parameters": any(p.type.is_array for p in parameters),
+    }
+    return frozenset(name for name, used in found.items() if used)
+
+
+ROS2_CPP = {
+    "node": Needs(("rclcpp",), ("rclcpp/rclcpp.hpp",), ("rclcpp/rclcpp.hpp", "<memory>")),
+    "lifecycle": Needs(("rclcpp_lifecycle",),
+                       ("rclcpp_lifecycle/lifecycle_node.hpp", "rclcpp_lifecycle/lifecycle_publisher.hpp")),
+    "component": Needs(("rclcpp_components",), user=("rclcpp_components/register_node_macro.hpp",)),
+    "timers": Needs(base=("<chrono>",)),
+    "services": Needs(base=("<memory>",)),
+    "actions": Needs(("rclcpp_action",), ("<memory>", "rclcpp_action/rclcpp_action.hpp")),
+    "action_clients": Needs(base=("<atomic>",)),
+    "parameter_descriptors": Needs(("rcl_interfaces",), ("rcl_interfaces/msg/parameter_descriptor.hpp",)),
+    "string_parameters": Needs(base=("<string>",)),
+    "array_parameters": Needs(base=("<vector>",)),
+}
+
+ROS2_PYTHON = {
+    "node": Needs(("rclpy",), (), ("rclpy", "rclpy.executors:ExternalShutdownException")),
+    "plain": Needs(base=("rclpy.node:Node",)),
+    "lifecycle": Needs(base=("rclpy.lifecycle:Node", "rclpy.lifecycle:State",
+                             "rclpy.lifecycle:TransitionCallbackReturn")),
+    "sensor_data_qos": Needs(base=("rclpy.qos:qos_profile_sensor_data",)),
+    "action_servers": Needs(base=("rclpy.action:ActionServer", "rclpy.action:CancelResponse",
+                                  "rclpy.action:GoalResponse", "rclpy.callback_groups:ReentrantCallbackGroup"),
+                            user=("time", "rclpy.executors:MultiThreadedExecutor")),
+    # GoalStatus, to report how a goal ended.
+    "action_clients": Needs(("action_msgs",), ("rclpy.action:ActionClient",), ("action_msgs.msg:GoalStatus",)),
+    "parameter_descriptors": Needs(("rcl_interfaces",), ("rcl_interfaces.msg:ParameterDescriptor",)),
+    "integer_ranges": Needs(base=("rcl_interfaces.msg:IntegerRange",)),
+    "float_ranges": Needs(base=("rcl_interfaces.msg:FloatingPointRange",)),
+}
+
+ROS1_CPP = {
+    "node": Needs(("roscpp",), ("ros/ros.h",), ("ros/ros.h",)),
+    "actions": Needs(("actionlib", "actionlib_msgs")),
+    "action_servers": Needs(base=("actionlib/server/simple_action_server.h",)),
+    "action_clients": Needs(base=("actionlib/client/simple_action_client.h",)),
+    "string_parameters": Needs(base=("<string>",)),
+    "array_parameters": Needs(base=("<vector>",)),
+}
+
+ROS1_PYTHON = {
+    "node": Needs(("rospy",), ("rospy",), ("rospy",)),
+    "actions": Needs(("actionlib", "actionlib_msgs"), ("actionlib",)),
+    "action_clients": Needs(user=("actionlib_msgs.msg:GoalStatus",)),
+}
+
+TABLES = {(2, "cpp"): ROS2_CPP, (2, "python"): ROS2_PYTHON, (1, "cpp"): ROS1_CPP, (1, "python"): ROS1_PYTHON}
+
+
+def needs(node) -> list[Needs]:
+    """What the node's features need, in its dialect."""
+    table = TABLES[(node.ros, node.language)]
+    return [table[feature] for feature in sorted(node_features(node)) if feature in table]
+
+
+def packages(node) -> set[str]:
+    return {package for need in needs(node) for package in need.packages}

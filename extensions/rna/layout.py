@@ -1,0 +1,80 @@
+"""Where the files of a generated package go: the one home of every path.
+
+Paths of a node's files are relative to its package folder; the package folder is the
+destination's `<package>/`, or the destination itself for a node added to a package the
+template did not make (target 'node'). copier.yml reads the globs of the files users own
+from here (`_skip_if_exists`), the templates name their files after the model's paths,
+and the after-update step and the tests ask the model.
+"""
+
+from __future__ import annotations
+
+# A node's files, by (ROS generation, language); {package} and {name} are filled in.
+USER_FILES = {
+    (2, "cpp"): "src/{name}.cpp",
+    (1, "cpp"): "src/{name}.cpp",
+    (2, "python"): "{package}/{name}.py",
+    (1, "python"): "scripts/{name}.py",
+}
+BASE_FILES = {
+    (2, "cpp"): "include/{package}/{name}_base.hpp",
+    (1, "cpp"): "include/{package}/{name}_base.h",
+    (2, "python"): "{package}/{name}_base.py",
+    (1, "python"): "src/{package}/{name}_base.py",
+}
+PYTHON_PACKAGE_DIRS = {2: "{package}", 1: "src/{package}"}
+CONFIG_FILE = "config/{name}.yaml"
+LAUNCH_FILES = {2: "launch/{package}.launch.xml", 1: "launch/{package}.launch"}
+BASE_SUFFIX = "_base"
+
+# Files of a whole package, which a node added to an existing package never writes.
+PACKAGE_FILES = ("README.md", "LICENSE", "package.xml", "CMakeLists.txt", "setup.py", "setup.cfg", "resource",
+                 "test", "launch")
+
+
+def user_file(package: str, name: str, ros: int, language: str) -> str:
+    return USER_FILES[(ros, language)].format(package=package, name=name)
+
+
+def base_file(package: str, name: str, ros: int, language: str) -> str:
+    return BASE_FILES[(ros, language)].format(package=package, name=name)
+
+
+def config_file(name: str) -> str:
+    return CONFIG_FILE.format(name=name)
+
+
+def executable(name: str, ros: int, language: str) -> str:
+    """What rosrun / ros2 run starts: ROS 1 Python scripts keep their .py."""
+    return f"{name}.py" if ros == 1 and language == "python" else name
+
+
+def launch_file(package: str, ros: int) -> str:
+    return LAUNCH_FILES[ros].format(package=package)
+
+
+def python_package_dir(package: str, ros: int) -> str:
+    return PYTHON_PACKAGE_DIRS[ros].format(package=package)
+
+
+def package_dir(package: str, target: str) -> str:
+    """The package folder within the destination."""
+    return "." if target == "node" else package
+
+
+def _in_package(path: str, package: str, target: str) -> str:
+    return path if target == "node" else f"{package}/{path}"
+
+
+def user_files_glob(package: str, target: str, ros: int, language: str) -> str:
+    """The destination-relative glob of one kind of user-owned file (for `_skip_if_exists`)."""
+    return _in_package(USER_FILES[(ros, language)].format(package=package, name="*"), package, target)
+
+
+def base_files_glob(package: str, target: str, ros: int, language: str) -> str:
+    return _in_package(BASE_FILES[(ros, language)].format(package=package, name="*"), package, target)
+
+
+def python_init_file(package: str, target: str, ros: int) -> str:
+    """The destination-relative path of the Python package's __init__.py."""
+    return _in_package(python_package_dir(package, ros) + "/__init__.py", package, target)

@@ -1,0 +1,76 @@
+"""English for comments, docstrings, logs and the README: what a node does, in a sentence."""
+
+from __future__ import annotations
+
+import textwrap
+from collections.abc import Iterable
+
+
+def english_list(items: Iterable[str]) -> str:
+    """['a', 'b', 'c'] -> 'a, b and c'."""
+    items = list(items)
+    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
+
+
+def with_article(word: str) -> str:
+    """'approach' -> 'an approach', 'reset' -> 'a reset' (for log messages and docs)."""
+    return ("an " if word.lstrip("/~")[:1].lower() in "aeiou" else "a ") + word
+
+
+def capitalised(text: str) -> str:
+    return text[:1].upper() + text[1:]
+
+
+def period_text(period: float) -> str:
+    """'every 0.5 s' for docs and comments."""
+    return f"every {period:g} s"
+
+
+def node_summary(node) -> str:
+    """The node's description, or a sentence made from what it does."""
+    if node.description:
+        return node.description if node.description.endswith(".") else node.description + "."
+    parts = []
+    if node.publishers:
+        parts.append("publishes " + english_list(t.topic for t in node.publishers))
+    if node.subscribers:
+        parts.append("subscribes to " + english_list(t.topic for t in node.subscribers))
+    if node.service_servers:
+        parts.append("serves " + english_list(s.name for s in node.service_servers))
+    if node.service_clients:
+        parts.append("calls " + english_list(s.name for s in node.service_clients))
+    if node.action_servers:
+        parts.append("executes " + english_list(a.name for a in node.action_servers) + " goals")
+    if node.action_clients:
+        parts.append("sends " + english_list(a.name for a in node.action_clients) + " goals")
+    if not parts:
+        return f"The {node.name} node."
+    return capitalised(english_list(parts)) + "."
+
+
+def summary_lines(node, width: int = 88) -> list[str]:
+    """The summary wrapped for a docstring or comment, after a blank line."""
+    return ["", *textwrap.wrap(node_summary(node), width)]
+
+
+def driver_docstring(node) -> str:
+    """What the starter timer callback does."""
+    work = []
+    if node.publishers:
+        work.append("publish the next message" + ("s" if len(node.publishers) > 1 else ""))
+    if node.service_clients:
+        work.append("call the service" + ("s" if len(node.service_clients) > 1 else ""))
+    if node.action_clients:
+        work.append("send a goal" if len(node.action_clients) == 1 else "send goals")
+    return capitalised(english_list(work)) + "."
+
+
+def describe_nodes(nodes) -> str:
+    """A package description from its nodes: what each does, or their names."""
+    if len(nodes) > 3:
+        return "Nodes " + english_list(node.name for node in nodes)
+    if any(node.description for node in nodes):
+        return " ".join(node_summary(node) for node in nodes)
+    text = "; ".join(f"the {node.name} node {node_summary(node)[0].lower()}{node_summary(node)[1:-1]}"
+                     for node in nodes)
+    return capitalised(text)
