@@ -6,9 +6,10 @@ builds both in temporary folders:
 
 * `snapshot_repo()`: the working tree's template (copier.yml, template/, extensions/)
   committed in a fresh repository and tagged, e.g. v0.2.0;
-* `release_history_repo()`: the real v0.1.0 of this repository (`git archive v0.1.0`)
-  tagged v0.1.0, with the working tree committed on top and tagged v0.2.0, so an update
-  from 0.1.0 to 0.2.0 runs over real history;
+* `release_history_repo()`: the real v0.1.0 of this repository (`git archive` of the
+  commit the changelog names, support/releases.py) tagged v0.1.0, with the working tree
+  committed on top and tagged v0.2.0, so an update from 0.1.0 to 0.2.0 runs over real
+  history;
 * `generate_project()`: `copier copy` from one tag with machine-independent answers, then
   `git init` and a commit;
 * `run_update()`: the `copier` command line, `copier update --trust --defaults`, as a
@@ -42,6 +43,7 @@ from .generation import (
     ANSWERS_FILE, FIXED_ANSWERS, ROOT, TEMPLATE_ITEMS, answers_of, git, snapshot_template, subprocess_env,
 )
 from .packages import rna
+from .releases import ReleaseError, release_commit
 
 OLD_VERSION = "v0.1.0"
 NEW_VERSION = "v0.2.0"
@@ -70,19 +72,12 @@ def snapshot_repo(destination: Path, version: str = NEW_VERSION) -> TemplateRepo
     return TemplateRepo(destination, (version,))
 
 
-# The commit each release tag names, for a clone that has the history but not the tags.
-RELEASE_COMMITS = {"v0.1.0": "38f734fa7da355bbf4453f1ac6b7f8e8f9e21476"}
-
-
 def release_ref(tag: str, source: Path = ROOT) -> str:
-    """The release's tag, or its commit; fail the test, saying what to do, without either."""
-    for ref in (f"refs/tags/{tag}", RELEASE_COMMITS.get(tag)):
-        if ref and git("rev-parse", "-q", "--verify", f"{ref}^{{commit}}", cwd=source, check=False).returncode == 0:
-            return ref
-    pytest.fail(
-        f"the upgrade tests need the release {tag} in {source} (tag or commit "
-        f"{RELEASE_COMMITS.get(tag)}), and it is missing (a shallow clone?): run `git fetch --tags`",
-        pytrace=False)
+    """The commit of release `tag` by the changelog's rule (support/releases.py): tags or not."""
+    try:
+        return release_commit(source, tag.removeprefix("v"))
+    except ReleaseError as error:
+        pytest.fail(f"the upgrade tests need the release {tag}: {error}", pytrace=False)
 
 
 def release_history_repo(destination: Path, old: str = OLD_VERSION, new: str = NEW_VERSION,
@@ -476,7 +471,7 @@ def current_template(tmp_path_factory) -> TemplateRepo:
 
 @pytest.fixture(scope="session")
 def release_template(tmp_path_factory, current_template) -> TemplateRepo:
-    """The v0.1.0 release from this repository's tag, then the working tree as v0.2.0."""
+    """The v0.1.0 release of this repository (found by the changelog), then the working tree as v0.2.0."""
     return release_history_repo(tmp_path_factory.mktemp("template-history"), new_tree=current_template.path)
 
 
