@@ -11,8 +11,11 @@ from __future__ import annotations
 import functools
 import getpass
 import json
+import os
+import re
 import subprocess
 import sys
+from collections.abc import Mapping
 from pathlib import Path
 
 from copier.errors import UserMessageError
@@ -143,6 +146,38 @@ def git_config(key: str) -> str:
     return result.stdout.strip()
 
 
+def in_git_work_tree(path) -> bool:
+    """Whether `path` is inside a git work tree (`copier update` needs one)."""
+    try:
+        result = subprocess.run(["git", "-C", str(path), "rev-parse", "--is-inside-work-tree"],
+                                capture_output=True, text=True, timeout=5, check=False)
+    except (OSError, subprocess.SubprocessError):
+        return False
+    return result.stdout.strip() == "true"
+
+
+# A template source that is not a local path: a URL, Copier's gh:/gl: shortcuts, git's user@host:path.
+_REMOTE_SOURCE = re.compile(r"^([A-Za-z][\w+.-]*://|gh:|gl:|[^/:\s]+@[^/:\s]+:)")
+
+
+def absolute_source(answers: Mapping, cwd: str | None = None) -> dict:
+    """The answers to record, with a template given by a relative local path made absolute.
+
+    Copier records `_src_path` as typed, and `copier update` resolves it from wherever it
+    runs: `copier copy . ~/demo` would record `.`, which later names the project itself.
+    Copier renders in the directory it was started from (it does not chdir), so that is
+    where a relative path is resolved. URLs, shortcuts and absolute or `~` paths stay.
+    """
+    recorded = dict(answers)
+    source = recorded.get("_src_path")
+    if not isinstance(source, str) or _REMOTE_SOURCE.match(source) or source.startswith("~"):
+        return recorded
+    path = Path(cwd or os.getcwd(), source)
+    if not Path(source).is_absolute() and path.exists():
+        recorded["_src_path"] = os.path.normpath(path)
+    return recorded
+
+
 class RnaExtension(Extension):
     """Filters and globals for copier.yml and the templates."""
 
@@ -153,9 +188,10 @@ class RnaExtension(Extension):
             builds_interfaces=rna.distros.BUILDS_INTERFACES, languages=rna.distros.languages,
             default_description=default_description, default_nodes=default_nodes,
             existing_package=existing_package, found_interfaces=found_interfaces, git_config=git_config,
-            login_name=getpass.getuser, package_files=package_files, python_init_file=python_init_file,
-            user_files=user_files)
+            in_git_work_tree=in_git_work_tree, login_name=getpass.getuser, package_files=package_files,
+            python_init_file=python_init_file, user_files=user_files)
         environment.filters.update(
+            absolute_source=absolute_source,
             dialect=rna.dialects.dialect,
             driver_docstring=rna.wording.driver_docstring,
             package_name_from_folder=rna.names.package_name_from_folder,
