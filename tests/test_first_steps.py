@@ -21,7 +21,10 @@ import yaml
 from conftest import FIXED_ANSWERS, ROOT, answers_of, git
 from copier_glue import absolute_source
 from support.releases import versions
-from support.template_repo import GIT_IDENTITY
+
+if "support.template_repo" not in sys.modules:  # its asserts explain themselves too
+    pytest.register_assert_rewrite("support.template_repo")
+from support.template_repo import GIT_IDENTITY  # noqa: E402
 
 COPIER = str(Path(sys.executable).with_name("copier"))
 NEW_NODE = {"name": "odometry", "subscribers": ["odom:nav_msgs/msg/Odometry"], "parameters": ["frame_id:string=odom"]}
@@ -38,7 +41,7 @@ def readme_commands() -> list[str]:
 
 def test_readme_starts_with_the_demo_and_the_test_suite():
     demo, suite = readme_commands()
-    assert demo.startswith("tests/env copier copy --trust --defaults ") and demo.split("#")[0].split()[-1] == "~/rna_demo"
+    assert demo.split()[:4] == ["tests/env", "copier", "copy", "--trust"] and "~/rna_demo" in demo
     assert suite.split("#")[0].split() == ["tests/env", "pytest"]
 
 

@@ -31,13 +31,13 @@ def history(tmp_path) -> tuple[Path, dict[str, str]]:
     repo = tmp_path / "repo"
     repo.mkdir()
     git("init", "-q", "-b", "main", cwd=repo)
-    commits = {"start": commit(repo, "start", "# Changelog\n\n## Unreleased\n- a\n", "a")}
+    unreleased, first, second = "## Unreleased\n", "## 1.0.0 (2026-01-01)\n- a\n", "## 1.1.0 (2026-02-01)\n- c\n"
+    commits = {"start": commit(repo, "start", f"# Changelog\n\n{unreleased}- a\n", "a")}
     commits["1.0.0"] = commit(repo, "feature b", code="b")
-    commit(repo, "Release 1.0.0", "# Changelog\n\n## 1.0.0 (2026-01-01)\n- a\n")
-    commits["1.1.0"] = commit(repo, "feature c", "# Changelog\n\n## Unreleased\n- c\n\n## 1.0.0 (2026-01-01)\n- a\n", "c")
-    commit(repo, "Release 1.1.0", "# Changelog\n\n## 1.1.0 (2026-02-01)\n- c\n\n## 1.0.0 (2026-01-01)\n- a\n")
-    commit(repo, "feature d", "# Changelog\n\n## Unreleased\n- d\n\n## 1.1.0 (2026-02-01)\n- c\n\n"
-                              "## 1.0.0 (2026-01-01)\n- a\n", "d")
+    commit(repo, "Release 1.0.0", f"# Changelog\n\n{first}")
+    commits["1.1.0"] = commit(repo, "feature c", f"# Changelog\n\n{unreleased}- c\n\n{first}", "c")
+    commit(repo, "Release 1.1.0", f"# Changelog\n\n{second}\n{first}")
+    commit(repo, "feature d", f"# Changelog\n\n{unreleased}- d\n\n{second}\n{first}", "d")
     return repo, commits
 
 
