@@ -18,13 +18,9 @@ from pathlib import Path
 import pytest
 import yaml
 
-from conftest import FIXED_ANSWERS, ROOT, answers_of, git
+from support.generation import FIXED_ANSWERS, GIT_IDENTITY, ROOT, answers_of, git
 from copier_glue import absolute_source
 from support.releases import versions
-
-if "support.template_repo" not in sys.modules:  # its asserts explain themselves too
-    pytest.register_assert_rewrite("support.template_repo")
-from support.template_repo import GIT_IDENTITY  # noqa: E402
 
 COPIER = str(Path(sys.executable).with_name("copier"))
 NEW_NODE = {"name": "odometry", "subscribers": ["odom:nav_msgs/msg/Odometry"], "parameters": ["frame_id:string=odom"]}
@@ -119,7 +115,7 @@ def fresh_clone(tmp_path_factory) -> Path:
     subprocess.run(["git", "clone", "-q", "--no-tags", str(ROOT), str(clone)], check=True)
     git("fetch", "-q", "--no-tags", str(ROOT), "HEAD", cwd=clone)  # HEAD may be on no branch
     git("checkout", "-q", "--detach", "FETCH_HEAD", cwd=clone)
-    assert git("tag", "-l", cwd=clone) == ""
+    assert git("tag", "-l", cwd=clone).stdout == ""
     return clone
 
 
@@ -161,7 +157,7 @@ def test_the_readme_demo_is_a_release_and_grows_with_copier_update(fresh_clone, 
     assert "No git tags found" not in copied.stderr
     assert answers_of(demo)["_commit"] == f"v{newest}"
     assert answers_of(demo)["_src_path"] == str(fresh_clone)
-    assert f"v{newest}" in git("tag", "-l", cwd=fresh_clone).split()
+    assert f"v{newest}" in git("tag", "-l", cwd=fresh_clone).stdout.split()
 
     commit_as_documented(demo, env)
     nodes = yaml.safe_dump([*answers_of(demo)["nodes"], NEW_NODE], default_flow_style=True, width=10_000).strip()
@@ -193,4 +189,4 @@ def test_releases_are_selected_with_vcs_ref_in_a_fresh_clone(fresh_clone, tmp_pa
                      "--vcs-ref", f"v{newest}"], demo, env)
     assert f"Updating to template version {newest}" in updated.stderr
     assert answers_of(demo)["_commit"] == f"v{newest}"
-    assert git("status", "--porcelain", cwd=demo).strip(), "the update changed nothing"
+    assert git("status", "--porcelain", cwd=demo).stdout.strip(), "the update changed nothing"

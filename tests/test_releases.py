@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import ROOT, git
+from support.generation import ROOT, git
 from support.releases import ReleaseError, changelog_versions, release_commit, tag_releases, versions
 
 TAG_RELEASES = ROOT / "tests" / "tools" / "tag-releases"
@@ -22,7 +22,7 @@ def commit(repo: Path, message: str, changelog: str | None = None, code: str | N
         (repo / "copier.yml").write_text(code)
     git("add", "-A", cwd=repo)
     git("commit", "-q", "--allow-empty", "-m", message, cwd=repo)
-    return git("rev-parse", "HEAD", cwd=repo).strip()
+    return git("rev-parse", "HEAD", cwd=repo).stdout.strip()
 
 
 @pytest.fixture
@@ -72,8 +72,8 @@ def test_tag_releases_creates_the_missing_tags_once_and_quietly(history):
     first = run_tool(repo)
     assert first.returncode == 0, first.stderr
     assert first.stderr == f"tag-releases: tagged v1.1.0 ({commits['1.1.0'][:7]}) from docs/CHANGELOG.md\n"
-    assert git("rev-parse", "v1.1.0^{commit}", cwd=repo).strip() == commits["1.1.0"]
-    assert git("rev-parse", "v1.0.0^{commit}", cwd=repo).strip() == commits["1.0.0"]
+    assert git("rev-parse", "v1.1.0^{commit}", cwd=repo).stdout.strip() == commits["1.1.0"]
+    assert git("rev-parse", "v1.0.0^{commit}", cwd=repo).stdout.strip() == commits["1.0.0"]
     again = run_tool(repo)
     assert (again.returncode, again.stdout, again.stderr) == (0, "", "")
 
@@ -86,4 +86,4 @@ def test_a_shallow_clone_says_what_to_fetch(history, tmp_path):
         tag_releases(shallow)
     result = run_tool(shallow)
     assert result.returncode == 1 and "git fetch --unshallow" in result.stderr
-    assert git("tag", "-l", cwd=shallow) == ""
+    assert git("tag", "-l", cwd=shallow).stdout == ""
