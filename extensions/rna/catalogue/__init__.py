@@ -1,0 +1,58 @@
+"""The message, service and action types of the standard interface packages, per distro.
+
+Each `<distro>.json` beside this file is written by tests/tools/make_catalogue.py from the
+packages' own definition files and says where they came from and when (docs/catalogue.md).
+Only the packages a catalogue lists are checked: types of any other package stay allowed.
+"""
+
+from __future__ import annotations
+
+import difflib
+import functools
+import json
+from pathlib import Path
+
+from ..distros import generation
+from ..interfaces import KIND_NAMES, InterfaceType
+from ..wording import english_list, with_article
+
+FOLDER = Path(__file__).resolve().parent
+SHORT_LIST = 6  # a package with this many types of a kind or fewer has them all named in the error
+
+
+@functools.cache
+def load(distro: str) -> dict | None:
+    """The catalogue of `distro` as written by make_catalogue.py, None if there is none."""
+    path = FOLDER / f"{distro}.json"
+    return json.loads(path.read_text(encoding="utf-8")) if path.is_file() else None
+
+
+def known_types(package: str, distro: str) -> dict[str, list[str]] | None:
+    """{kind: sorted type names} of a catalogued package, None when it is not catalogued."""
+    catalogue = load(distro)
+    return catalogue["packages"].get(package) if catalogue else None
+
+
+def unknown_type_error(package: str, kind: str, name: str, distro: str) -> str | None:
+    """Why `package/kind/name` does not exist in `distro`, or None when it does or cannot be told.
+
+    A type named under another kind is said so; a misspelt one gets the closest name.
+    """
+    types = known_types(package, distro)
+    if types is None or name in types[kind]:
+        return None
+    given = InterfaceType(package, kind, name, generation(distro)).full_name
+    problem = f"'{given}' is not {with_article(KIND_NAMES[kind])} of {package} in {distro}"
+    others = [with_article(KIND_NAMES[other]) for other in KIND_NAMES if name in types[other]]
+    if others:  # ROS 1's nav_msgs/GetMap is both a service and an action
+        return f"{problem}: it is {english_list(others)}"
+    # A name differing only in case is the one meant, however far apart difflib finds them.
+    close = [known for known in types[kind] if known.lower() == name.lower()]
+    close = close or difflib.get_close_matches(name, types[kind], n=1)
+    if close:
+        return f"{problem} (did you mean {close[0]}?)"
+    if not types[kind]:
+        return f"{problem}: {package} has no {KIND_NAMES[kind]}s"
+    if len(types[kind]) <= SHORT_LIST:
+        return f"{problem} ({package} has {english_list(types[kind])})"
+    return problem
