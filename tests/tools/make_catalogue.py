@@ -48,7 +48,6 @@ ROS1_PACKAGES = (
 BORROWED = {"test_msgs": "test_interface_files"}
 WHEEL_DISTROS = ("jazzy", "kilted")
 DEBIAN_DISTROS = ("noetic",)
-SOURCE_DISTROS = ("humble", "rolling")
 DISTROS = ("humble", "jazzy", "kilted", "rolling", "noetic")
 
 
@@ -121,14 +120,13 @@ def from_debian(packages: Iterable[str]) -> dict[str, tuple[str, dict]]:
     """{package: (source, types)} from Debian's ros-<name> packages, installing missing ones."""
     wanted = {package: f"ros-{package.replace('_', '-')}" for package in packages}
     missing = [deb for deb in wanted.values() if installed(deb) is None]
-    if missing:
-        if os.geteuid() != 0:
-            raise RuntimeError(f"installing Debian packages needs root: {' '.join(missing)}")
+    if missing and os.geteuid() == 0:
         run(["apt-get", "update"], check=True)
-        missing = [deb for deb in missing if run(["apt-cache", "show", deb]).returncode == 0]
-        if missing:
+        if missing := [deb for deb in missing if run(["apt-cache", "show", deb]).returncode == 0]:
             env = {**os.environ, "DEBIAN_FRONTEND": "noninteractive"}
             run(["apt-get", "install", "-y", "--no-install-recommends", *missing], check=True, env=env)
+    elif missing:
+        log(f"noetic: installing Debian packages needs root; reading without {' '.join(missing)}")
     release = re.search(r'^PRETTY_NAME="?(.*?)"?$', Path("/etc/os-release").read_text(), re.M)
     found = {}
     for package, deb in wanted.items():
