@@ -40,6 +40,7 @@ try:
     import rna.configs
     import rna.dialects
     import rna.distros
+    import rna.dialects.lines
     import rna.dialects.python
     import rna.layout
     import rna.names
@@ -189,15 +190,23 @@ class RnaExtension(Extension):
             default_description=default_description, default_nodes=default_nodes,
             existing_package=existing_package, found_interfaces=found_interfaces, git_config=git_config,
             in_git_work_tree=in_git_work_tree, login_name=getpass.getuser, package_files=package_files,
-            python_init_file=python_init_file, user_files=user_files)
+            python_init_file=python_init_file, user_files=user_files,
+            # Line-breaking markers (rna/dialects/lines.py).
+            br=rna.dialects.lines.BREAK, sbr=rna.dialects.lines.SPLIT,
+            opt=rna.dialects.lines.OPTIONAL, alt=rna.dialects.lines.ALTERNATIVE,
+            endopt=rna.dialects.lines.OPTIONAL_END)
         environment.filters.update(
             absolute_source=absolute_source,
             dialect=rna.dialects.dialect,
             driver_docstring=rna.wording.driver_docstring,
+            fit_cpp=functools.partial(rna.dialects.lines.fit, language="cpp"),
+            fit_python=functools.partial(rna.dialects.lines.fit, language="python"),
             package_name_from_folder=rna.names.package_name_from_folder,
             period_text=rna.wording.period_text,
+            md_cell=rna.wording.markdown_cell,
             python_literal=rna.dialects.python.literal,
             python_text=rna.dialects.python.text_literal,
+            reflow=rna.dialects.lines.reflow,
             summary=rna.wording.node_summary,
             summary_lines=rna.wording.summary_lines,
             with_article=rna.wording.with_article,
@@ -213,6 +222,7 @@ class PackageContext(ContextHook):
 
     def hook(self, context):
         if str(context.get("_copier_phase")) != "render":
+            _check_given_answers(context)
             return
         answers = {key: context.get(key) for key in (*rna.answers.QUESTIONS, "copyright_year")}
         key = json.dumps([answers, str((context.get('_copier_conf') or {}).get('dst_path'))],
@@ -224,6 +234,26 @@ class PackageContext(ContextHook):
                 raise UserMessageError(f"rna-template: {error}") from None
             _refuse_to_overwrite(_models[key], context)
         context["package"] = _models[key]
+
+
+_checked: set[str] = set()
+
+
+def _check_given_answers(context) -> None:
+    """Answers given with --data or --data-file, checked before Copier reads them.
+
+    Copier checks a choice, or parses a YAML answer, itself when it reaches the question,
+    and a broken one ends in a traceback; this says the same in one line, first.
+    """
+    given = (context.get("_copier_conf") or {}).get("data") or {}
+    key = json.dumps(given, sort_keys=True, default=str)
+    if not given or key in _checked:
+        return
+    _checked.add(key)
+    try:
+        rna.answers.check_given(given)
+    except rna.AnswerError as error:
+        raise UserMessageError(f"rna-template: {error}") from None
 
 
 def _refuse_to_overwrite(package, context) -> None:

@@ -67,7 +67,7 @@ BROKEN = [
      "nodes", "both use the name 'on_odom_request'"),
     (node(service_servers=["reset"]), "nodes", "write it as name:type"),
     (node(service_clients=["reset:std_msgs/msg/String"]), "nodes", "is a message type, but a service type"),
-    (node(action_servers=["move:nav2_msgs/srv/Move"]), "nodes", "but a action type"),
+    (node(action_servers=["move:nav2_msgs/srv/Move"]), "nodes", "but an action type"),
     (node(action_clients=[{"name": "~", "type": "test_msgs/action/Fibonacci"}]), "nodes", "no name"),
     (node(timers=["fast"]), "nodes", "is not a number of seconds"),
     (node(timers=[[1]]), "nodes", "a timer must be a period in seconds"),
@@ -79,7 +79,7 @@ BROKEN = [
     (node(parameters=["Rate:double=1.0"]), "nodes", "lower_snake_case"),
     (node(parameters=["rate"]), "nodes", "give a type or a default"),
     (node(parameters=["rate:complex=1"]), "nodes", "is not one of"),
-    (node(parameters=["rate:int=1.5"]), "nodes", "is not a int"),
+    (node(parameters=["rate:int=1.5"]), "nodes", "is not an int"),
     (node(parameters=["rate:double=[1"]), "nodes", "cannot read the default"),
     (node(parameters=[{"name": "", "default": 1}]), "nodes", "a parameter name is required"),
     (node(parameters=[7]), "nodes", "a parameter must be 'name:type=default'"),
@@ -99,6 +99,52 @@ BROKEN = [
     (node(parameters=[{"name": "r", "default": 1, "range": [0, 1.5]}]), "nodes", "whole-number"),
     (node(parameters=[{"name": "r", "default": 1, "read_only": "no"}]), "nodes", "true or false"),
     (node(parameters=["rate=1.0", "rate=2.0"]), "nodes", "both use the name 'rate'"),
+    # Answers that passed the rules but broke the build or the run (issue 8).
+    (answers(package_name="p" * 40), "package_name", "at most 39"),
+    (answers(package_name="test"), "package_name", "find_packages"),
+    (answers(package_name="json"), "package_name", "standard library"),
+    (answers(package_name="rclpy", build_type="ament_python", nodes=[{"name": "a"}]), "package_name",
+     "a package its nodes use"),
+    (answers(package_name="std_msgs", nodes=[{"name": "a", "publishers": ["x:std_msgs/msg/String"]}]),
+     "package_name", "a package its nodes use"),
+    (answers(description="one\rline"), "description", "printable"),
+    (answers(maintainer="Ada\tLovelace"), "maintainer", "printable"),
+    (answers(maintainer_email="ada@localhost"), "maintainer_email", "catkin_pkg"),
+    (answers(copyright_holder="Lab\\"), "copyright_holder", "C++ comment"),
+    (answers(nodes=[{"name": "n" * 40}]), "nodes", "at most 39"),
+    (node(description='Says """hello"""'), "nodes", "docstring"),
+    (node(description="bell\a"), "nodes", "printable"),
+    (node(parameters=["use_sim_time=true"]), "nodes", "declared by ROS 2 itself"),
+    (node(parameters=["start_type_description_service=true"]), "nodes", "declared by ROS 2 itself"),
+    (node(parameters=["lambda=1"]), "nodes", "Python keyword"),
+    (node(parameters=[{"name": "big", "default": 2**63}]), "nodes", "64-bit integer"),
+    (node(parameters=[{"name": "big", "type": "int[]", "default": [1, -2**63 - 1]}]), "nodes", "64-bit integer"),
+    (node(parameters=[{"name": "r", "default": 1, "range": [0, 2**64]}]), "nodes", "64-bit integer"),
+    (node(parameters=[{"name": "r", "default": "x", "description": "two\nlines"}]), "nodes", "printable"),
+    (node(publishers=["/" + "a" * 80 + ":std_msgs/msg/String"]), "nodes", "at most 80"),
+    (node(publishers=[{"topic": "a", "type": "std_msgs/msg/String", "id": "b" * 51}]), "nodes", "at most 50"),
+    (node(publishers=["a:my_msgs/msg/" + "A" * 51]), "nodes", "at most 50"),
+    (node(publishers=["a:my_msgs/msg/None"]), "nodes", "Python keyword"),
+    (answers(interfaces={"messages": [{"name": "None", "fields": ["int32 x"]}]}), "interfaces", "Python keyword"),
+    (answers(interfaces={"messages": [{"name": "GetMapROI", "fields": ["int32 x"]},
+                                      {"name": "GetMapRoi", "fields": ["int32 x"]}]}), "interfaces", "get_map_roi"),
+    (answers(ros_distro="noetic", build_type="catkin", interfaces={
+        "messages": [{"name": "SetRequest", "fields": ["int32 x"]}],
+        "services": [{"name": "Set", "request": ["int32 x"], "response": []}]}), "interfaces",
+     "message generation already makes"),
+    (answers(ros_distro="noetic", build_type="catkin", interfaces={
+        "messages": [{"name": "GoGoal", "fields": ["int32 x"]}],
+        "actions": [{"name": "Go", "goal": ["int32 x"], "result": [], "feedback": []}]}), "interfaces",
+     "the action 'Go'"),
+    (node(publishers=["cmd_vel:geometry_msgs/msg/Twst"]), "nodes", "did you mean Twist?"),
+    (answers(ros_distro="noetic", build_type="catkin", nodes=[{"name": "a", "subscribers": ["x:geometry_msgs/Twst"]}]),
+     "nodes", "'geometry_msgs/Twst' is not a message of geometry_msgs in noetic (did you mean Twist?)"),
+    (node(service_servers=["get:std_srvs/srv/String"]), "nodes", "is not a service of std_srvs"),
+    (answers(ros_distro="noetic", build_type="catkin", package_name="robot", nodes=[
+        {"name": "robot", "language": "python"}]), "nodes", "shadow the Python module 'robot'"),
+    (answers(ros_distro="noetic", build_type="catkin", nodes=[
+        {"name": "std_msgs", "language": "python", "publishers": ["x:std_msgs/msg/String"]}]), "nodes",
+     "shadow the Python module 'std_msgs'"),
 ]
 
 
@@ -114,6 +160,14 @@ def test_each_rule_names_the_question_and_the_rule(values, question, rule):
 def test_node_errors_say_which_node():
     error = error_of(node(publishers=["bad topic:std_msgs/msg/String"]))
     assert "node 'driver': publisher: topic 'bad topic'" in str(error)
+
+
+@pytest.mark.parametrize(("values", "question", "rule"), BROKEN)
+def test_errors_name_the_node_and_the_question_once(values, question, rule):
+    error = str(error_of(values))
+    assert error.count("invalid answer") == 1
+    assert error.count("node '") <= 2  # 'node a and node a both use' names two
+    assert "node 'driver': node 'driver'" not in error
 
 
 def test_short_and_long_forms_give_the_same_model():
@@ -188,7 +242,7 @@ def test_python_names_avoid_clashes():
     [("node_name", "Bad", "lower_snake_case"),
      ("node_publishers", "chatter", "write it as topic:type"),
      ("node_timers", "0", "more than 0 s"),
-     ("node_parameters", "x:int=a", "is not a int")],
+     ("node_parameters", "x:int=a", "is not an int")],
 )
 def test_quick_questions_use_the_same_rules(question, value, rule):
     assert rule in question_error(question, {**VALID, question: value})
@@ -238,3 +292,8 @@ def test_ros1_rules():
     assert a.subscribers[0].member == "odom_subscriber"
     assert [d.name for d in package.dependencies] == ["actionlib", "actionlib_msgs", "nav_msgs", "rospy"]
     assert all(d.tag == "depend" for d in package.dependencies)
+
+
+def test_types_of_other_packages_and_newer_rolling_types_stay_allowed():
+    build_package(node(publishers=["goals:nav_msgs/msg/Goals"]) | {"ros_distro": "rolling"})
+    build_package(node(publishers=["x:my_robot_msgs/msg/Anything"]))

@@ -6,11 +6,14 @@ import ast
 import os
 import re
 import subprocess
+import xml.etree.ElementTree as ET
+from pathlib import Path
 import sys
 
 import pytest
 import yaml
 from catkin_pkg.package import parse_package
+from rna import wording
 from support.generation import VARIANTS, answers_of, example
 from support.packages import dependencies, launched_nodes, package_dir
 
@@ -172,3 +175,46 @@ def test_python_names_that_clash_are_imported_under_their_package(make_package):
     base = (package / "poses" / "pose_base.py").read_text()
     assert "from geometry_msgs.msg import Pose as GeometryMsgsPose" in base
     assert "from turtlesim.msg import Pose as TurtlesimPose" in base
+
+
+def _declared_defaults(path: Path) -> dict:
+    """The default of every declare_parameter() / get_param() call in a generated Python file."""
+    defaults = {}
+    for call in ast.walk(ast.parse(path.read_text())):
+        if isinstance(call, ast.Call) and getattr(call.func, "attr", "") in ("declare_parameter", "get_param"):
+            name, default = (ast.literal_eval(arg) for arg in call.args[:2])
+            defaults[name.lstrip("~")] = default
+    return defaults
+
+
+@pytest.mark.parametrize("ros_distro", ["jazzy", "noetic"])
+def test_awkward_text_lands_intact_everywhere(make_package, ros_distro):
+    """Quotes, backslashes, newlines, Jinja and XML delimiters read back as written (issue 8)."""
+    answers = example("awkward_text", ros_distro=ros_distro)
+    if ros_distro == "noetic":
+        answers.pop("build_type")
+    destination = make_package(answers)
+    package = package_dir(destination)
+    node = answers["nodes"][0]
+    expected = {p["name"]: p["default"] for p in node["parameters"]}
+    for path in package.rglob("*.py"):
+        compile(path.read_text(), str(path), "exec")
+    python_base = next(package.rglob("echo_base.py"))
+    assert _declared_defaults(python_base) == expected
+    config = yaml.safe_load((package / "config" / "echo.yaml").read_text())
+    assert (config if ros_distro == "noetic" else config["/**"]["ros__parameters"]) == expected
+    manifest = parse_package(str(package / "package.xml"))  # catkin_pkg reads it
+    manifest.validate()
+    assert manifest.maintainers[0].name == answers["maintainer"]
+    assert ET.parse(package / "package.xml").getroot().findtext("description") == answers["description"]
+    assert "| " + wording.markdown_cell(node["description"]) in (destination / "README.md").read_text()
+    user_file = next(package.rglob("echo.py"))
+    assert node["description"] in ast.get_docstring(ast.parse(user_file.read_text()).body[-3])
+
+
+def test_a_ros1_python_node_with_nothing_to_wire_is_valid_python(make_package):
+    package = package_dir(make_package({"package_name": "idle", "ros_distro": "noetic",
+                                        "nodes": [{"name": "waiter", "language": "python"}]}))
+    for path in package.rglob("*.py"):
+        compile(path.read_text(), str(path), "exec")
+    compile((package / "scripts" / "waiter.py").read_text(), "waiter.py", "exec")

@@ -34,6 +34,15 @@ def copier_copy(template: Path, destination: Path, *args: str) -> subprocess.Com
         (["--data", "nodes=[{name: t, subscribers: [x:std_srvs/srv/Empty]}]"],
          "invalid answer to 'nodes': node 't': 'std_srvs/srv/Empty' is a service type"),
         (["--data", "nodes=[{name: t, language: cpp}]"], "an ament_python package holds Python nodes only"),
+        # Choices and YAML that Copier itself would refuse with a traceback (issue 8).
+        (["--data", "ros_distro=foxy"], "invalid answer to 'ros_distro': 'foxy' is not one of"),
+        (["--data", "license=WTFPL"], "invalid answer to 'license': 'WTFPL' is not one of"),
+        (["--data", "ros_distro=noetic", "--data", "build_type=ament_python"],
+         "invalid answer to 'build_type': 'ament_python' is not one of catkin for ROS 1"),
+        (["--data", "build_type=ament_python", "--data", "interfaces_location=package"],
+         "invalid answer to 'interfaces_location': an ament_python package cannot build interfaces"),
+        (["--data", "nodes=- name: [unclosed"], "invalid answer to 'nodes': not valid YAML"),
+        (["--data", "nodes=[{name: t, publishers: ['v:geometry_msgs/msg/Twst']}]"], "did you mean Twist?"),
     ],
 )
 def test_bad_answers_give_one_line_and_write_nothing(template_dir, tmp_path, args, message):

@@ -109,6 +109,11 @@ def catkin_ws(ros1, template_dir, tmp_path_factory) -> CatkinWorkspace:
     generate(template_dir, path / "src" / "bringup", LAUNCHED_PACKAGE)
     # Every endpoint kind, parameter type and both languages: compiled with -Werror.
     generate(template_dir, path / "src" / "everything", example(VARIANTS["ros1"], package_name="everything"))
+    # Long names and awkward text must compile with -Werror too (escapes, aliases, line breaks).
+    generate(template_dir, path / "src" / "long_names", example("long_names_ros1"))
+    awkward = example("awkward_text", ros_distro="noetic")
+    awkward.pop("build_type")
+    generate(template_dir, path / "src" / "awkward", awkward)
     generate(template_dir, path / "src" / "tracker", TRACKER)
     generate(template_dir, path / "src" / "tracker_same", TRACKER_SAME)
     # A C++ node added to a catkin package written by hand.
@@ -178,7 +183,9 @@ def test_parameters_come_from_the_command_line(catkin_ws):
 
 def test_generated_packages_pass_catkin_lint(catkin_ws):
     for package in ("pairs/pairs", "bringup/bringup", "everything/everything", "tracker/tracker",
-                    "tracker/tracker_interfaces", "tracker_same/tracker_same", "hand_rover"):
+                    "tracker/tracker_interfaces", "tracker_same/tracker_same", "hand_rover",
+                    "long_names/target_tracking_navigation_ros1",
+                    "long_names/target_tracking_navigation_ros1_interfaces", "awkward/awkward_text"):
         returncode, output = catkin_ws.ros1.catkin_lint(
             catkin_ws.path / "src" / package, catkin_ws.ros1.env(ros1_support.free_port(), catkin_ws.logs))
         assert returncode == 0, output

@@ -41,7 +41,7 @@ def test_package_names_breaking_a_rule(name, rule):
         ("9lives", "lower_snake_case"),
         ("talker_base", "_base"),
         ("import", "Python keyword"),
-        ("x" * 256, "255"),
+        ("x" * 40, "at most 39"),
     ],
 )
 def test_node_names_breaking_a_rule(name, rule):
@@ -105,7 +105,7 @@ def test_package_name_defaults_from_the_folder(folder, package):
 def test_interface_spelling_ros2():
     twist = parse_interface("geometry_msgs/msg/PointCloud2", "msg")
     assert Ros2Cpp.header(twist) == "geometry_msgs/msg/point_cloud2.hpp"
-    assert Ros2Cpp.type(twist) == "geometry_msgs::msg::PointCloud2"
+    assert Ros2Cpp.full_type(twist) == "geometry_msgs::msg::PointCloud2"
     assert Ros2Python.module(twist) == "geometry_msgs.msg"
     assert twist.full_name == "geometry_msgs/msg/PointCloud2"
     action = parse_interface("test_msgs/Fibonacci", "action")
@@ -116,7 +116,7 @@ def test_interface_spelling_ros2():
 def test_interface_spelling_ros1():
     action = parse_interface("actionlib_tutorials/action/Fibonacci", "action", ros=1)
     assert Ros1Cpp.header(action) == "actionlib_tutorials/FibonacciAction.h"
-    assert Ros1Cpp.type(action) == "actionlib_tutorials::FibonacciAction"
+
     assert Ros1Python.module(action) == "actionlib_tutorials.msg"
     service = parse_interface("std_srvs/srv/SetBool", "srv", ros=1)
     assert service.full_name == "std_srvs/SetBool"
@@ -163,7 +163,7 @@ def test_parameter_type_errors():
         infer_type([])
     with pytest.raises(ValueError, match="mixes types"):
         infer_type([1, "a"])
-    with pytest.raises(ValueError, match="is not a int"):
+    with pytest.raises(ValueError, match="is not an int"):
         coerce_default(1.5, ParameterType("int"))
     with pytest.raises(ValueError, match="not a list"):
         coerce_default(1.0, ParameterType("double", True))

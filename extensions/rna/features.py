@@ -84,8 +84,9 @@ ROS1_CPP = {
 
 ROS1_PYTHON = {
     "node": Needs(("rospy",), ("rospy",), ("rospy",)),
-    "actions": Needs(("actionlib", "actionlib_msgs"), ("actionlib",)),
-    "action_clients": Needs(user=("actionlib_msgs.msg:GoalStatus",)),
+    "actions": Needs(("actionlib", "actionlib_msgs")),
+    "action_servers": Needs(base=("actionlib:SimpleActionServer",)),
+    "action_clients": Needs(base=("actionlib:SimpleActionClient",), user=("actionlib_msgs.msg:GoalStatus",)),
 }
 
 TABLES = {(2, "cpp"): ROS2_CPP, (2, "python"): ROS2_PYTHON, (1, "cpp"): ROS1_CPP, (1, "python"): ROS1_PYTHON}

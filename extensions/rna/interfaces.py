@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .names import is_camel_case, package_name_error
+from .names import header_path_error, is_camel_case, package_name_error, type_name_error
 
 KINDS = ("msg", "srv", "action")
 KIND_NAMES = {"msg": "message", "srv": "service", "action": "action"}
@@ -69,9 +69,15 @@ def parse_interface(text: object, kind: str, ros: int = 2) -> InterfaceType:
     if given_kind not in KINDS:
         raise ValueError(f"'{text}': the middle part must be msg, srv or action")
     if given_kind != kind:
-        raise ValueError(f"'{text}' is a {KIND_NAMES[given_kind]} type, but a {wanted} type is needed here")
+        given = KIND_NAMES[given_kind]
+        raise ValueError(f"'{text}' is {'an' if given == 'action' else 'a'} {given} type, but "
+                         f"{'an' if wanted == 'action' else 'a'} {wanted} type is needed here")
     if package_name_error(package):
         raise ValueError(f"'{text}': '{package}' is not a valid package name (REP 144)")
     if not is_camel_case(name):
         raise ValueError(f"'{text}': type names are CamelCase, starting with an upper-case letter")
+    if type_name_error(name):
+        raise ValueError(f"'{text}': {type_name_error(name)}")
+    if header_path_error(package, kind, name):
+        raise ValueError(f"'{text}': {header_path_error(package, kind, name)}")
     return InterfaceType(package, kind, name, ros)

@@ -7,8 +7,11 @@ non-interactive run.
 
 from __future__ import annotations
 
+import builtins
 import keyword
 import re
+import sys
+import unicodedata
 
 CPP_KEYWORDS = frozenset(
     """
@@ -30,10 +33,48 @@ _SNAKE_CASE = re.compile(r"[a-z](?:[a-z0-9]|_(?=[a-z0-9]))*")
 _CAMEL_CASE = re.compile(r"[A-Z][A-Za-z0-9]*")
 _NAME_TOKEN = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
+# Longest names, so that every line the template writes fits the 100 columns ROS's
+# linters allow: the C++ header guard <PACKAGE>__<NODE>_BASE_HPP_ after `#endif  // ` and
+# `from <package>.<node>_base import (` need package + node <= 78 characters.
+PACKAGE_NAME_MAX = 39
+NODE_NAME_MAX = 39
+ROS_NAME_MAX = 80  # topics, services, actions: a string literal on a continuation line
+IDENTIFIER_MAX = 50  # the code name of an endpoint, in members and callbacks
+TYPE_NAME_MAX = 50
+# uncrustify moves a longer #include "<package>/<kind>/<type>.hpp" onto a continuation line,
+# where cpplint counts its length.
+HEADER_PATH_MAX = 96
+
+# catkin_pkg's own check of a maintainer's e-mail address (catkin_make fails on others).
+_EMAIL = re.compile(r"^[-a-zA-Z0-9_%+]+(\.[-a-zA-Z0-9_%+]+)*@[-a-zA-Z0-9%]+(\.[-a-zA-Z0-9%]+)*\.[a-zA-Z]{2,}$")
+
+# Parameters the ROS 2 client libraries declare on every node themselves.
+ROS2_DECLARED_PARAMETERS = frozenset({"use_sim_time", "start_type_description_service"})
+
+# Names a type cannot take: Python's keywords and built-in names (generated modules and
+# the nodes import types by name) and the C macros every C++ file sees.
+_C_MACROS = frozenset({"NULL", "EOF", "TRUE", "FALSE", "NAN", "INFINITY"})
+RESERVED_TYPE_NAMES = frozenset(
+    {name for name in dir(builtins) if name[:1].isupper()} | {"None", "True", "False"} | _C_MACROS
+)
+
 # Callbacks of rclcpp_lifecycle / rclpy.lifecycle that a generated callback must not shadow.
 LIFECYCLE_CALLBACKS = frozenset(
     {"on_configure", "on_activate", "on_deactivate", "on_cleanup", "on_shutdown", "on_error"}
 )
+
+
+def quoted(name: object, longest: int = 40) -> str:
+    """A name as an error message quotes it: whole, or its start and '...' when long."""
+    text = str(name)
+    return f"'{text}'" if len(text) <= longest else f"'{text[:longest - 10]}...'"
+
+
+def too_long(name: str, limit: int, what: str = "") -> str | None:
+    """The length rule every generated name follows, so that generated lines fit 100 columns."""
+    if len(name) <= limit:
+        return None
+    return f"{what}{quoted(name)} is {len(name)} characters long: at most {limit}, so generated lines fit 100 columns"
 
 
 def keyword_error(name: str) -> str | None:
@@ -59,6 +100,20 @@ def package_name_error(name: object) -> str | None:
     return keyword_error(name)
 
 
+def generated_package_name_error(name: object) -> str | None:
+    """A package this template generates: REP 144, and a Python package that imports right."""
+    error = package_name_error(name)
+    if error:
+        return error
+    if too_long(name, PACKAGE_NAME_MAX):
+        return too_long(name, PACKAGE_NAME_MAX)
+    if name == "test":
+        return "'test' is left out of Python packages by setup.py's find_packages(exclude=['test'])"
+    if name in sys.stdlib_module_names:
+        return f"'{name}' is a module of Python's standard library, which the package's own module would shadow"
+    return None
+
+
 def node_name_error(name: object) -> str | None:
     """ROS node names that also name a source file, a Python module and a class."""
     if not isinstance(name, str) or not name:
@@ -68,8 +123,8 @@ def node_name_error(name: object) -> str | None:
             f"'{name}' is not a valid node name: use lower_snake_case (letters, digits and "
             "single underscores, starting with a letter)"
         )
-    if len(name) > 255:
-        return f"'{name[:20]}...' is too long for a ROS node name (255 characters at most)"
+    if too_long(name, NODE_NAME_MAX):
+        return too_long(name, NODE_NAME_MAX)
     if name.endswith("_base"):
         return f"'{name}' ends in '_base', which is kept for the generated base classes"
     return keyword_error(name)
@@ -83,6 +138,8 @@ def topic_name_error(name: object, what: str = "topic") -> str | None:
     """
     if not isinstance(name, str) or not name:
         return f"a {what} name is required"
+    if too_long(name, ROS_NAME_MAX):
+        return too_long(name, ROS_NAME_MAX, f"{what} ")
     if "{" in name or "}" in name:
         return f"{what} '{name}': substitutions like {{node}} are not supported here"
     rest = name
@@ -108,8 +165,8 @@ def topic_name_error(name: object, what: str = "topic") -> str | None:
     return None
 
 
-def parameter_name_error(name: object) -> str | None:
-    """Parameter names: snake_case, valid as a ROS 1 and a ROS 2 parameter name."""
+def parameter_name_error(name: object, ros: int = 2) -> str | None:
+    """Parameter names: snake_case, valid as a ROS 1 and a ROS 2 parameter name and as a member."""
     if not isinstance(name, str) or not name:
         return "a parameter name is required"
     if not _SNAKE_CASE.fullmatch(name):
@@ -117,14 +174,54 @@ def parameter_name_error(name: object) -> str | None:
             f"'{name}' is not a valid parameter name: use lower_snake_case (letters, digits "
             "and single underscores, starting with a letter)"
         )
-    return None
+    if too_long(name, IDENTIFIER_MAX):
+        return too_long(name, IDENTIFIER_MAX, "parameter ")
+    if ros == 2 and name in ROS2_DECLARED_PARAMETERS:
+        return f"parameter '{name}' is declared by ROS 2 itself on every node"
+    # ROS 1 nodes keep each parameter in a member named after it (self.<name>, <name>_).
+    return keyword_error(name)
 
 
 def identifier_error(name: object, what: str) -> str | None:
-    """An explicit code name for an endpoint or a timer."""
+    """A code name for an endpoint or a timer, given or derived from a ROS name."""
     if not isinstance(name, str) or not _SNAKE_CASE.fullmatch(name):
         return f"{what} '{name}' must be lower_snake_case"
+    if too_long(name, IDENTIFIER_MAX):
+        return too_long(name, IDENTIFIER_MAX, f"{what} ")
     return keyword_error(name)
+
+
+def type_name_error(name: str) -> str | None:
+    """A message, service or action name beyond CamelCase: one every generated language can use."""
+    if name in RESERVED_TYPE_NAMES:
+        return f"'{name}' is a Python keyword, a Python built-in or a C macro"
+    if too_long(name, TYPE_NAME_MAX):
+        return too_long(name, TYPE_NAME_MAX)
+    return None
+
+
+def header_path_error(package: str, kind: str, name: str) -> str | None:
+    """A type's C++ header path (rosidl's <package>/<kind>/<type_in_snake_case>.hpp) must fit a line."""
+    path = f"{package}/{kind}/{camel_to_snake(name)}.hpp"
+    if len(path) > HEADER_PATH_MAX:
+        return (f"its C++ header {quoted(path, 60)} is {len(path)} characters long: at most {HEADER_PATH_MAX} "
+                "(a shorter type or package name)")
+    return None
+
+
+def email_error(address: object) -> str | None:
+    if not isinstance(address, str) or not _EMAIL.fullmatch(address.strip()):
+        return f"'{address}' is not an e-mail address catkin_pkg accepts (name@host.domain)"
+    return None
+
+
+def one_line_error(text: object) -> str | None:
+    """Free text that lands in code, XML and YAML: one non-empty line of printable characters."""
+    if not isinstance(text, str) or not text.strip():
+        return "give one line of text"
+    if any(unicodedata.category(char) in ("Cc", "Co", "Cs", "Cn", "Zl", "Zp") for char in text.strip()):
+        return "give one line of printable text (no newline, carriage return, tab or other control character)"
+    return None
 
 
 def is_camel_case(name: str) -> bool:

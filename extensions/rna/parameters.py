@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import json
 import math
 from dataclasses import dataclass
 
 SCALAR_TYPES = ("bool", "int", "double", "string")
+# ROS parameters hold 64-bit integers (rcl_interfaces ParameterValue.integer_value).
+INT_RANGE = (-2**63, 2**63 - 1)
 TYPE_ALIASES = {"integer": "int", "float": "double", "str": "string", "boolean": "bool"}
 
 
@@ -41,6 +44,11 @@ def parse_type(text: object) -> ParameterType:
     return ParameterType(name, is_array)
 
 
+def spelled(value: object) -> str:
+    """A value as the answers spell it (YAML: true, 'text', [1, 2]), for error messages."""
+    return json.dumps(value, ensure_ascii=False) if isinstance(value, (bool, list, str)) else str(value)
+
+
 def infer_type(value: object) -> ParameterType:
     """The parameter type of a YAML default value, when the user gave no type."""
     if isinstance(value, list):
@@ -50,7 +58,7 @@ def infer_type(value: object) -> ParameterType:
         if element_types == {"int", "double"}:
             return ParameterType("double", True)
         if len(element_types) != 1 or any(isinstance(item, list) for item in value):
-            raise ValueError(f"the list {value} mixes types; ROS arrays hold one type")
+            raise ValueError(f"the list {spelled(value)} mixes types; ROS arrays hold one type")
         return ParameterType(element_types.pop(), True)
     if isinstance(value, bool):
         return ParameterType("bool")
@@ -60,7 +68,7 @@ def infer_type(value: object) -> ParameterType:
         return ParameterType("double")
     if isinstance(value, str):
         return ParameterType("string")
-    raise ValueError(f"cannot tell the type of the default {value!r}: add `type:`")
+    raise ValueError(f"cannot tell the type of the default {spelled(value)}: add `type:`")
 
 
 def _coerce_scalar(value: object, scalar: str) -> object:
@@ -69,6 +77,8 @@ def _coerce_scalar(value: object, scalar: str) -> object:
             return value
     elif scalar == "int":
         if isinstance(value, int) and not isinstance(value, bool):
+            if not INT_RANGE[0] <= value <= INT_RANGE[1]:
+                raise ValueError(f"default {value} does not fit a 64-bit integer")
             return value
     elif scalar == "double":
         if isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value):
@@ -78,7 +88,7 @@ def _coerce_scalar(value: object, scalar: str) -> object:
             return value
         if isinstance(value, (int, float)) and not isinstance(value, bool):
             return str(value)
-    raise ValueError(f"default {value!r} is not a {scalar}")
+    raise ValueError(f"default {spelled(value)} is not {'an' if scalar == 'int' else 'a'} {scalar}")
 
 
 def coerce_default(value: object, ptype: ParameterType) -> object:
@@ -87,7 +97,7 @@ def coerce_default(value: object, ptype: ParameterType) -> object:
         return [] if ptype.is_array else {"bool": False, "int": 0, "double": 0.0, "string": ""}[ptype.scalar]
     if ptype.is_array:
         if not isinstance(value, list):
-            raise ValueError(f"default {value!r} is not a list, but the type is {ptype}")
+            raise ValueError(f"default {spelled(value)} is not a list, but the type is {ptype}")
         return [_coerce_scalar(item, ptype.scalar) for item in value]
     return _coerce_scalar(value, ptype.scalar)
 

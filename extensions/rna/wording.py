@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import html
 import textwrap
 from collections.abc import Iterable
 
@@ -19,6 +20,11 @@ def with_article(word: str) -> str:
 
 def capitalised(text: str) -> str:
     return text[:1].upper() + text[1:]
+
+
+def markdown_cell(text: str) -> str:
+    """Text for a cell of a Markdown table: HTML special characters and pipes escaped."""
+    return html.escape(text, quote=False).replace("|", "\\|")
 
 
 def period_text(period: float) -> str:
@@ -49,8 +55,18 @@ def node_summary(node) -> str:
 
 
 def summary_lines(node, width: int = 88) -> list[str]:
-    """The summary wrapped for a docstring or comment, after a blank line."""
-    return ["", *textwrap.wrap(node_summary(node), width)]
+    """The summary wrapped for a docstring or comment, after a blank line.
+
+    No line ends with a backslash, which would continue a C++ `//` comment onto the next.
+    """
+    lines = textwrap.wrap(node_summary(node), width)
+    for index in range(len(lines) - 1):
+        while lines[index].endswith("\\") or lines[index].endswith("??/"):
+            head, _, word = lines[index].rpartition(" ")
+            if not head:
+                break
+            lines[index], lines[index + 1] = head, f"{word} {lines[index + 1]}"
+    return ["", *lines]
 
 
 def driver_docstring(node) -> str:

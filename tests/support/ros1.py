@@ -54,7 +54,7 @@ DEBIAN_PACKAGES = [
     # Interface packages: definitions, C++ headers, Python modules.
     *(
         form.format(name)
-        for name in ("std-msgs", "std-srvs", "geometry-msgs", "sensor-msgs", "nav-msgs")
+        for name in ("std-msgs", "std-srvs", "geometry-msgs", "sensor-msgs", "nav-msgs", "move-base-msgs")
         for form in ("ros-{}", "lib{}-dev", "python3-{}")
     ),
     # Private network namespaces: ip (netns add, lo up) and nsenter.

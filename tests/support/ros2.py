@@ -231,7 +231,8 @@ class Ros2Environment:
         return self._lint("ament_cpplint", paths)
 
     def uncrustify(self, paths: Iterable[Path | str]) -> tuple[int, str]:
-        return self._lint("ament_uncrustify", paths)
+        # C++ always: uncrustify would take a ROS 1 header (.h) for C.
+        return self._lint("ament_uncrustify", ["--language", "CPP", *map(str, paths)])
 
 
 def workspace_env(install_dir: Path, base_env: Mapping[str, str]) -> dict[str, str]:

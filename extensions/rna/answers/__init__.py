@@ -9,7 +9,6 @@ default description live here too.
 
 from __future__ import annotations
 
-import re
 from collections.abc import Mapping
 from functools import cached_property
 
@@ -22,7 +21,7 @@ from ..licenses import get_license
 from ..model import Node, Package
 from .interfaces import parse_definitions
 from .nodes import Types, parse_node, parse_nodes
-from .shapes import split_list
+from .shapes import load_yaml, split_list
 
 # The questions whose answers make the package, in the order they are checked.
 QUESTIONS = ("package_name", "description", "maintainer", "maintainer_email", "license",
@@ -47,7 +46,6 @@ DEMO_NODES = [
     {"name": "listener", "subscribers": ["chatter:std_msgs/msg/String"]},
 ]
 
-_EMAIL = re.compile(r"[^@\s]+@[^@\s]+\.[^@\s]+")
 
 
 class AnswerError(ValueError):
@@ -60,8 +58,9 @@ class AnswerError(ValueError):
 
 
 def _one_line(value: object) -> str:
-    if not isinstance(value, str) or not value.strip() or "\n" in value.strip():
-        raise ValueError("give one line of text")
+    error = names.one_line_error(value)
+    if error:
+        raise ValueError(error)
     return value.strip()
 
 
@@ -81,7 +80,7 @@ class Answers:
 
     def _package_name(self) -> str:
         value = self.raw.get("package_name")
-        error = names.package_name_error(value)
+        error = names.generated_package_name_error(value)
         if error:
             raise ValueError(error)
         return value
@@ -91,8 +90,9 @@ class Answers:
 
     def _maintainer_email(self) -> str:
         value = self.raw.get("maintainer_email")
-        if not isinstance(value, str) or not _EMAIL.fullmatch(value.strip()):
-            raise ValueError(f"'{value}' is not an e-mail address")
+        error = names.email_error(value)
+        if error:
+            raise ValueError(error)
         return value.strip()
 
     def _ros_distro(self) -> str:
@@ -121,7 +121,7 @@ class Answers:
         if value not in (None, "separate", "package"):
             raise ValueError(f"'{value}' is not separate or package")
         build_type = self.raw.get("build_type")
-        if value == "package" and build_type not in distros.BUILDS_INTERFACES:
+        if value == "package" and build_type and build_type not in distros.BUILDS_INTERFACES:
             raise ValueError(f"an {build_type} package cannot build interfaces: keep them separate")
         return value or "separate"
 
@@ -140,7 +140,7 @@ class Answers:
         """How node answers read types: with the interfaces the answers define."""
         home = self.interfaces_home
         own = {(d.kind, d.name): InterfaceType(home, d.kind, d.name, self.ros) for d in self.definitions}
-        return Types(self.ros, own)
+        return Types(self.ros, own, self.raw.get("ros_distro"))
 
     @cached_property
     def nodes(self) -> tuple[Node, ...]:
@@ -155,7 +155,8 @@ class Answers:
         language = distros.node_language(self.raw.get("build_type"), self.raw.get("node_language"))
         name = self.raw.get("node_name") if not names.node_name_error(self.raw.get("node_name")) else "node"
         parse_node({"name": name, "language": language, QUICK_LISTS[question]: self.raw.get(question)},
-                   package="pkg", build_type=self.raw.get("build_type"), types=Types(self.ros))
+                   package="pkg", build_type=self.raw.get("build_type"),
+                   types=Types(self.ros, distro=self.raw.get("ros_distro")))
 
     def _node_name(self) -> None:
         error = names.node_name_error(self.raw.get("node_name"))
@@ -164,8 +165,13 @@ class Answers:
 
     def read(self, question: str):
         """The answer to `question`, read and checked; ValueError names the rule broken."""
-        if question in ("description", "maintainer", "copyright_holder"):
+        if question in ("description", "maintainer"):
             return _one_line(self.raw.get(question))
+        if question == "copyright_holder":
+            holder = _one_line(self.raw.get(question))
+            if holder.endswith("\\"):
+                raise ValueError("a backslash at the end would continue the C++ comment line it ends")
+            return holder
         if question in ("interfaces", "nodes"):
             return getattr(self, "definitions" if question == "interfaces" else question)
         if question in QUICK_LISTS:
@@ -187,6 +193,10 @@ class Answers:
                 read[question] = self.read(question)
             except ValueError as error:
                 raise AnswerError(question, str(error)) from None
+        package_name, home = read["package_name"], self.interfaces_home
+        used = {dependency for node in read["nodes"] for dependency in node.dependencies} - {home}
+        if package_name in used:
+            raise AnswerError("package_name", f"'{package_name}' is the name of a package its nodes use")
         year = self.raw.get("copyright_year")
         if isinstance(year, bool) or not isinstance(year, int) or not 1970 <= year <= 9999:
             raise AnswerError("copyright_year", f"'{year}' is not a year")
@@ -227,6 +237,40 @@ class Answers:
         return yaml.safe_dump([node], sort_keys=False)
 
 
+# Answers Copier itself checks (a choice) or parses (YAML) when they are given without a
+# prompt; its error would be a traceback, so they are checked first (check_given).
+_CHOICES = {
+    "interfaces_location": ("separate", "package"),
+    "target": ("package", "node"),
+    "node_setup": ("demo", "one", "list"),
+    "node_language": ("cpp", "python"),
+}
+
+
+def check_given(given: Mapping) -> None:
+    """AnswerError for the first answer given on the command line that Copier would refuse.
+
+    A rule that depends on another answer is checked only when that one is given too: on
+    an update the others come from the answers file, which is not read here.
+    """
+    for question, value in given.items():
+        try:
+            if question in _CHOICES and value not in _CHOICES[question]:
+                raise ValueError(f"'{value}' is not one of {', '.join(_CHOICES[question])}")
+            if question in ("ros_distro", "license"):
+                Answers(given).read(question)
+            elif question == "build_type" and "ros_distro" in given:
+                Answers(given).read(question)
+            elif question == "build_type" and value not in distros.BUILD_TYPES:
+                raise ValueError(f"'{value}' is not one of {', '.join(distros.BUILD_TYPES)}")
+            elif question == "interfaces_location":
+                Answers({"build_type": None, **given}).read(question)
+            elif question in ("nodes", "interfaces"):
+                load_yaml(value)
+        except ValueError as error:
+            raise AnswerError(question, str(error)) from None
+
+
 def build_package(answers: Mapping) -> Package:
     """Check every answer and build the model; raises AnswerError on the first broken rule."""
     return Answers(answers).package
@@ -241,4 +285,5 @@ def question_error(question: str, answers: Mapping) -> str | None:
     return None
 
 
-__all__ = ["QUESTIONS", "QUICK_LISTS", "AnswerError", "Answers", "build_package", "question_error", "split_list"]
+__all__ = ["QUESTIONS", "QUICK_LISTS", "AnswerError", "Answers", "build_package", "check_given", "question_error",
+           "split_list"]

@@ -5,7 +5,8 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 from ..definitions import SECTIONS, Definition, parse_field
-from ..names import is_camel_case
+from ..interfaces import KIND_NAMES
+from ..names import camel_to_snake, header_path_error, is_camel_case, type_name_error
 from .shapes import check_keys, load_yaml
 
 
@@ -30,7 +31,9 @@ def parse_definitions(value: object, *, package: str, ros: int) -> tuple[Definit
     names = [entry.get("name") for _, entry in items]
     local_names = {name for (kind, _), name in zip(items, names, strict=True)
                    if kind == "msg" and isinstance(name, str)}
+    derived = _derived_names(items, ros)
     seen: set[str] = set()
+    files: dict[str, str] = {}
     definitions = []
     for (kind, entry), name in zip(items, names, strict=True):
         if not isinstance(name, str) or not is_camel_case(name):
@@ -39,6 +42,16 @@ def parse_definitions(value: object, *, package: str, ros: int) -> tuple[Definit
         if name in seen:
             raise ValueError(f"{label}: the name is used twice (messages, services and actions share names)")
         seen.add(name)
+        if type_name_error(name):
+            raise ValueError(f"{label}: {type_name_error(name)}")
+        if header_path_error(package, kind, name):
+            raise ValueError(f"{label}: {header_path_error(package, kind, name)}")
+        if name in derived:
+            raise ValueError(f"{label}: message generation already makes a type of that name for {derived[name]}")
+        stem = camel_to_snake(name)
+        if stem in files:
+            raise ValueError(f"{label}: its generated files would be named like those of '{files[stem]}' ({stem})")
+        files[stem] = name
         check_keys(entry, ("name", *SECTIONS[kind]), label)
         sections = []
         for section in SECTIONS[kind]:
@@ -61,3 +74,18 @@ def parse_definitions(value: object, *, package: str, ros: int) -> tuple[Definit
             raise ValueError(f"{label}: a message cannot contain itself")
         definitions.append(Definition(kind, name, tuple(sections)))
     return tuple(definitions)
+
+
+# The types ROS 1 message generation makes for each service and action, beside the
+# definition's own (ROS 2's all contain an underscore, which no CamelCase name has).
+_ROS1_DERIVED = {"srv": ("Request", "Response"),
+                 "action": ("Action", "ActionGoal", "ActionResult", "ActionFeedback", "Goal", "Result", "Feedback")}
+
+
+def _derived_names(items, ros: int) -> dict[str, str]:
+    """Names message generation derives from the definitions -> what derives them."""
+    if ros != 1:
+        return {}
+    return {entry.get("name") + suffix: f"the {KIND_NAMES[kind]} '{entry.get('name')}'"
+            for kind, entry in items if isinstance(entry.get("name"), str)
+            for suffix in _ROS1_DERIVED.get(kind, ())}

@@ -6,16 +6,18 @@ mappings; every rule broken raises ValueError with a sentence that starts with t
 
 from __future__ import annotations
 
+import math
 import re
+import sys
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 
 import yaml
 
-from .. import distros, names
+from .. import catalogue, distros, names
 from ..interfaces import InterfaceType, parse_interface
 from ..model import BASE_MEMBERS, Action, Node, Qos, Service, Timer, Topic
-from ..parameters import Parameter, ParameterType, coerce_default, infer_type, parse_type
+from ..parameters import INT_RANGE, Parameter, ParameterType, coerce_default, infer_type, parse_type
 from .shapes import as_list, check_keys, load_yaml
 
 QOS_PROFILES = {"sensor_data": 5}
@@ -27,12 +29,17 @@ class Types:
 
     ros: int = 2
     own: Mapping[tuple[str, str], InterfaceType] = field(default_factory=dict)
+    distro: str | None = None  # checks the standard packages' types against its catalogue
 
     def parse(self, text: object, kind: str) -> InterfaceType:
         """`pkg/kind/Name`, `pkg/Name`, or the bare `Name` of an interface defined here."""
         if isinstance(text, str) and (kind, text.strip()) in self.own:
             return self.own[(kind, text.strip())]
-        return parse_interface(text, kind, self.ros)
+        interface = parse_interface(text, kind, self.ros)
+        error = self.distro and catalogue.unknown_type_error(interface.package, kind, interface.name, self.distro)
+        if error:
+            raise ValueError(error)
+        return interface
 
 
 def _split_short(text: str, fields: int) -> list[str]:
@@ -61,7 +68,11 @@ def _parse_id(given: object, ros_name: str, what: str) -> str:
         if error:
             raise ValueError(error)
         return str(given)
-    return names.identifier_from_name(ros_name)
+    derived = names.identifier_from_name(ros_name)
+    if names.too_long(derived, names.IDENTIFIER_MAX):
+        raise ValueError(f"{what}: the code name derived from it, {names.quoted(derived)}, is {len(derived)} "
+                         f"characters long (at most {names.IDENTIFIER_MAX}): give the endpoint a shorter `id`")
+    return derived
 
 
 def _parse_topic(item: object, role: str, types: Types) -> Topic:
@@ -127,7 +138,7 @@ def _parse_timer(item: object) -> Timer:
 _SHORT_PARAMETER = re.compile(r"(?P<name>[^:=\s]+)\s*(?::\s*(?P<type>[^=\s]+))?\s*(?:=(?P<default>.*))?", re.S)
 
 
-def _parse_parameter(item: object) -> Parameter:
+def _parse_parameter(item: object, ros: int) -> Parameter:
     if isinstance(item, str):
         match = _SHORT_PARAMETER.fullmatch(item.strip())
         if not match:
@@ -144,7 +155,7 @@ def _parse_parameter(item: object) -> Parameter:
         raise ValueError("a parameter must be 'name:type=default' or a mapping with name, type and default")
     check_keys(item, ("name", "type", "default", "description", "range", "read_only"), "parameter")
     name = item.get("name")
-    error = names.parameter_name_error(name)
+    error = names.parameter_name_error(name, ros)
     if error:
         raise ValueError(error)
     what = f"parameter '{name}'"
@@ -161,8 +172,8 @@ def _parse_parameter(item: object) -> Parameter:
     if ptype.is_array and not default:
         raise ValueError(f"{what}: array parameters need a non-empty default")
     description = item.get("description") or ""
-    if not isinstance(description, str) or "\n" in description:
-        raise ValueError(f"{what}: description must be one line of text")
+    if description and names.one_line_error(description):
+        raise ValueError(f"{what}: description: {names.one_line_error(description)}")
     read_only = item.get("read_only", False)
     if not isinstance(read_only, bool):
         raise ValueError(f"{what}: read_only must be true or false")
@@ -187,6 +198,10 @@ def _parse_range(value: object, ptype: ParameterType, default: object, what: str
             raise ValueError(f"{what}: range bounds must be numbers")
         if ptype.scalar == "int" and not isinstance(bound, int):
             raise ValueError(f"{what}: an int parameter needs whole-number range bounds")
+        if ptype.scalar == "int" and not INT_RANGE[0] <= bound <= INT_RANGE[1]:
+            raise ValueError(f"{what}: range bound {bound} does not fit a 64-bit integer")
+        if ptype.scalar == "double" and not math.isfinite(bound):
+            raise ValueError(f"{what}: range bounds must be finite")
     if low > high:
         raise ValueError(f"{what}: range minimum {low} is above its maximum {high}")
     if step < 0:
@@ -197,12 +212,12 @@ def _parse_range(value: object, ptype: ParameterType, default: object, what: str
     return (cast(low), cast(high), cast(step))
 
 
-def _check_unique(node_label: str, items: Iterable[tuple[str, str]]) -> None:
+def _check_unique(items: Iterable[tuple[str, str]]) -> None:
     """items: (name, label) pairs; a name used twice is an error naming both uses."""
     seen: dict[str, str] = {}
     for name, label in items:
         if name in seen:
-            raise ValueError(f"{node_label}: {seen[name]} and {label} both use the name '{name}'")
+            raise ValueError(f"{seen[name]} and {label} both use the name '{name}'")
         seen[name] = label
 
 
@@ -241,8 +256,10 @@ def parse_node(item: object, *, package: str, build_type: str, types: Types) -> 
         if flags["component"] and language != "cpp":
             raise ValueError("components are C++ nodes (rclcpp_components)")
         description = item.get("description") or ""
-        if not isinstance(description, str) or "\n" in description.strip():
-            raise ValueError("description must be one line of text")
+        if description and names.one_line_error(description):
+            raise ValueError(f"description: {names.one_line_error(description)}")
+        if '"""' in description:
+            raise ValueError('description: three double quotes (""") would end the Python docstring it goes in')
         node = Node(
             name=name,
             language=language,
@@ -264,27 +281,37 @@ def parse_node(item: object, *, package: str, build_type: str, types: Types) -> 
             action_clients=tuple(_parse_service_or_action(x, Action, "action", "client", types)
                                  for x in as_list(item.get("action_clients"), "action_clients")),
             timers=tuple(_parse_timer(x) for x in as_list(item.get("timers"), "timers")),
-            parameters=tuple(_parse_parameter(x) for x in as_list(item.get("parameters"), "parameters")),
+            parameters=tuple(_parse_parameter(x, ros) for x in as_list(item.get("parameters"), "parameters")),
         )
-        _check_node_names(node, label)
+        _check_node_names(node)
+        _check_script_name(node)
     except ValueError as error:
         raise ValueError(f"{label}: {error}") from None
     return node
 
 
-def _check_node_names(node: Node, label: str) -> None:
+def _check_script_name(node: Node) -> None:
+    """A ROS 1 Python node runs as scripts/<node>.py, whose folder Python searches first."""
+    if node.ros != 1 or not node.is_python:
+        return
+    imported = {node.package, *node.dependencies}
+    if node.name in imported or node.name in sys.stdlib_module_names:
+        raise ValueError(f"its script {node.executable} would shadow the Python module '{node.name}' it needs")
+
+
+def _check_node_names(node: Node) -> None:
     """Every ROS name and every generated member and callback is used once per node."""
-    _check_unique(label, ((t.topic, t.label) for t in node.publishers))
-    _check_unique(label, ((t.topic, t.label) for t in node.subscribers))
-    _check_unique(label, ((s.name, s.label) for s in node.service_servers + node.service_clients))
-    _check_unique(label, ((a.name, a.label) for a in node.actions))
-    _check_unique(label, ((p.name, f"parameter '{p.name}'") for p in node.parameters))
-    _check_unique(label, ((e.member, e.label) for e in node.endpoints))
+    _check_unique((t.topic, t.label) for t in node.publishers)
+    _check_unique((t.topic, t.label) for t in node.subscribers)
+    _check_unique((s.name, s.label) for s in node.service_servers + node.service_clients)
+    _check_unique((a.name, a.label) for a in node.actions)
+    _check_unique((p.name, f"parameter '{p.name}'") for p in node.parameters)
+    _check_unique((e.member, e.label) for e in node.endpoints)
     methods = [(method, endpoint.label) for endpoint in node.endpoints for method in endpoint.methods]
     methods.extend((name, "a lifecycle callback") for name in names.LIFECYCLE_CALLBACKS)
-    _check_unique(label, methods)
+    _check_unique(methods)
     # ROS 1 nodes keep parameters in members named after them.
-    _check_unique(label, [*((e.member, e.label) for e in node.endpoints), *methods,
+    _check_unique([*((e.member, e.label) for e in node.endpoints), *methods,
                           *((name, "a member of the base class") for name in BASE_MEMBERS),
                           *((p.name, f"parameter '{p.name}'") for p in node.parameters)])
 
@@ -294,5 +321,5 @@ def parse_nodes(value: object, *, package: str, build_type: str, types: Types) -
     if not isinstance(value, list) or not value:
         raise ValueError("give a list with at least one node")
     nodes = tuple(parse_node(item, package=package, build_type=build_type, types=types) for item in value)
-    _check_unique("nodes", ((node.name, f"node '{node.name}'") for node in nodes))
+    _check_unique((node.name, f"node '{node.name}'") for node in nodes)
     return nodes

@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
-import json
+from collections import Counter
 from collections.abc import Iterable
+from functools import cached_property
 
-from .. import features
+from .. import features, names
+from .lines import SPLIT
 from ..parameters import ParameterType
 
 _SCALARS = {"bool": "bool", "int": "int64_t", "double": "double", "string": "std::string"}
@@ -19,6 +21,12 @@ _SAMPLES = {
 }
 
 
+def include(header: str) -> str:
+    """One #include line; too long for 100 columns, continued the way uncrustify wants it."""
+    line = f"#include {header}" if header.startswith("<") else f'#include "{header}"'
+    return line if len(line) <= 100 else line.replace("#include ", "#include \\\n  ", 1)
+
+
 def include_block(headers: Iterable[str]) -> str:
     """Headers ('<chrono>' or 'rclcpp/rclcpp.hpp') -> the #include block.
 
@@ -29,9 +37,9 @@ def include_block(headers: Iterable[str]) -> str:
     others = sorted({h for h in headers if not h.startswith("<")})
     blocks = []
     if standard:
-        blocks.append("\n".join(f"#include {h}" for h in standard))
+        blocks.append("\n".join(include(h) for h in standard))
     if others:
-        blocks.append("\n".join(f'#include "{h}"' for h in others))
+        blocks.append("\n".join(include(h) for h in others))
     return "\n\n".join(blocks)
 
 
@@ -49,19 +57,64 @@ def literal(value: object, ptype: ParameterType, scalars: dict[str, str] = _SCAL
     return string(value)
 
 
-def string(text: str) -> str:
-    """A C++ string literal: a JSON string literal is also a valid C++ one."""
-    return json.dumps(text, ensure_ascii=False)
+_CPP_ESCAPES = {"\\": "\\\\", '"': '\\"', "\n": "\\n", "\r": "\\r", "\t": "\\t"}
+
+
+def string(text: str, split: bool = False) -> str:
+    """A C++ string literal that reads back as `text` (UTF-8 source); `split`: cut at spaces if too long.
+
+    Control characters become octal escapes (a hex escape would swallow the digits that
+    follow), and '?' is escaped after another '?' so no trigraph forms (GCC warns).
+    """
+    out = []
+    for char in text:
+        if char in _CPP_ESCAPES:
+            out.append(_CPP_ESCAPES[char])
+        elif ord(char) < 0x20 or ord(char) == 0x7F:
+            out.append(f"\\{ord(char):03o}")
+        elif not char.isprintable():
+            out.append(f"\\u{ord(char):04x}" if ord(char) < 0x10000 else f"\\U{ord(char):08x}")
+        elif char == "?" and out and out[-1] in ("?", "\\?"):
+            out.append("\\?")
+        elif char == " " and split:
+            out.append(" " + SPLIT)
+        else:
+            out.append(char)
+    return '"' + "".join(out) + '"'
 
 
 class CppDialect:
-    """What ROS 1 and ROS 2 C++ code share."""
+    """What ROS 1 and ROS 2 C++ code share.
+
+    The base class names every interface type by an alias it declares, as ros2/examples
+    does (`using Twist = geometry_msgs::msg::Twist;`), which keeps lines short; the user's
+    class inherits the aliases. A type whose name clashes with another one or with a
+    name the code uses is aliased with its package's name in front: NavMsgsOdometry.
+    """
 
     SCALARS = _SCALARS
     string = staticmethod(string)
+    # Names the generated C++ uses unqualified in the node's classes.
+    RESERVED = frozenset({"CallbackReturn", "Node", "LifecycleNode"})
 
     def __init__(self, node) -> None:
         self.node = node
+
+    def _names(self, interfaces) -> dict:
+        """interface -> the name its alias (or aliases' stem) takes in the node's classes."""
+        node = self.node
+        taken = {node.class_name, node.base_class_name, *self.RESERVED}
+        counts = Counter(t.name for t in interfaces)
+        return {t: names.snake_to_camel(t.package) + t.name if counts[t.name] > 1 or t.name in taken else t.name
+                for t in interfaces}
+
+    @cached_property
+    def alias_names(self) -> dict:
+        return self._names(self.node.interfaces)
+
+    def type(self, interface) -> str:
+        """The name of an interface type in the node's classes (its alias)."""
+        return self.alias_names[interface]
 
     def parameter_type(self, parameter) -> str:
         scalar = self.SCALARS[parameter.type.scalar]

@@ -14,6 +14,7 @@ from collections.abc import Iterable
 from functools import cached_property
 
 from .. import features, names
+from .lines import SPLIT
 
 # Names the generated Python files import or define besides interface types.
 RESERVED = frozenset({
@@ -31,8 +32,27 @@ _SAMPLES = {
 }
 
 
-def literal(value: object) -> str:
-    """A Python literal in the quote style ROS's flake8 settings want (single quotes)."""
+def _escape(text: str, quote: str) -> str:
+    """The inside of a Python string literal in `quote` that reads back as `text`."""
+    out = []
+    for char in text:
+        if char in ("\\", quote):
+            out.append("\\" + char)
+        elif char in "\n\r\t":
+            out.append({"\n": "\\n", "\r": "\\r", "\t": "\\t"}[char])
+        elif not char.isprintable():
+            code = ord(char)
+            out.append(f"\\x{code:02x}" if code < 0x100 else f"\\u{code:04x}" if code < 0x10000 else f"\\U{code:08x}")
+        else:
+            out.append(char)
+    return "".join(out)
+
+
+def literal(value: object, split: bool = False) -> str:
+    """A Python literal in the quote style ROS's flake8 settings want (single quotes).
+
+    `split`: a string may be cut at its spaces (rna.dialects.lines) when its line is too long.
+    """
     if isinstance(value, bool):
         return "True" if value else "False"
     if isinstance(value, float):
@@ -40,12 +60,18 @@ def literal(value: object) -> str:
     if isinstance(value, int):
         return str(value)
     if isinstance(value, str):
-        if "'" in value and '"' not in value:
-            return '"' + value.replace("\\", "\\\\") + '"'
-        return "'" + value.replace("\\", "\\\\").replace("'", "\\'") + "'"
+        # flake8-quotes: single quotes, unless the text holds some and no double ones.
+        quote = '"' if "'" in value and '"' not in value else "'"
+        inside = _escape(value, quote)
+        return quote + (inside.replace(" ", " " + SPLIT) if split else inside) + quote
     if isinstance(value, list):
         return "[" + ", ".join(literal(item) for item in value) + "]"
     raise TypeError(f"no Python literal for {value!r}")
+
+
+def docstring_prefix(text: str) -> str:
+    """'r' for a docstring holding a backslash: pydocstyle (D301) wants it raw."""
+    return "r" if "\\" in text else ""
 
 
 def text_literal(text: str, column: int, indent: int, width: int = 99) -> str:
@@ -68,6 +94,13 @@ def _top(module: str) -> str:
     return module.split(".")[0]
 
 
+def _from_import(module: str, names: list[str], width: int = 99) -> str:
+    line = f"from {module} import {', '.join(names)}"
+    if len(line) <= width:
+        return line
+    return f"from {module} import (\n" + "".join(f"    {name},\n" for name in names) + ")"
+
+
 def import_block(imports: Iterable[str]) -> str:
     """'module' or 'module:Name' (Name may be 'Name as Alias') -> the import block."""
     plain: set[str] = set()
@@ -79,10 +112,8 @@ def import_block(imports: Iterable[str]) -> str:
         else:
             plain.add(module)
     statements = [(module, f"import {module}") for module in plain]
-    statements += [
-        (module, f"from {module} import {', '.join(sorted(names, key=_sort_key))}")
-        for module, names in from_imports.items()
-    ]
+    statements += [(module, _from_import(module, sorted(names, key=_sort_key)))
+                   for module, names in from_imports.items()]
     statements.sort(key=lambda item: (_sort_key(item[0]), item[1].startswith("from")))
     stdlib = [line for module, line in statements if _top(module) in sys.stdlib_module_names]
     groups: dict[str, list[str]] = defaultdict(list)
@@ -102,6 +133,7 @@ class PythonDialect:
 
     literal = staticmethod(literal)
     text_literal = staticmethod(text_literal)
+    docstring_prefix = staticmethod(docstring_prefix)
 
     @cached_property
     def types(self) -> dict:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from .. import names
 from .cpp import CppDialect
+from .lines import BREAK
 
 # The CMake targets of the client libraries; other packages export ${<pkg>_TARGETS}.
 _CMAKE_TARGETS = {
@@ -22,7 +23,7 @@ class Ros2Cpp(CppDialect):
         return f"{interface.package}/{interface.kind}/{names.camel_to_snake(interface.name)}.hpp"
 
     @staticmethod
-    def type(interface) -> str:
+    def full_type(interface) -> str:
         return f"{interface.package}::{interface.kind}::{interface.name}"
 
     def part(self, interface, part: str) -> str:
@@ -30,13 +31,27 @@ class Ros2Cpp(CppDialect):
         return f"{self.type(interface)}::{part}"
 
     @property
+    def aliases(self) -> list[tuple[str, str]]:
+        """(alias, what it names) for each `using` of the base class."""
+        node = self.node
+        aliases = [(self.type(t), self.full_type(t)) for t in node.interfaces]
+        for action in node.action_servers + node.action_clients:
+            kind = "ServerGoalHandle" if action.role == "server" else "ClientGoalHandle"
+            alias = (self.goal_handle(action), f"rclcpp_action::{kind}<{self.type(action.type)}>")
+            if alias not in aliases:  # two servers (or clients) of one type share it
+                aliases.append(alias)
+        if node.lifecycle:
+            aliases.append(("CallbackReturn",
+                            "rclcpp_lifecycle::node_interfaces::LifecycleNodeInterface::CallbackReturn"))
+        return aliases
+
+    @property
     def header_guard(self) -> str:
         return f"{self.node.package}__{self.node.base_name}_HPP_".upper()
 
-    @staticmethod
-    def goal_handle(action) -> str:
-        """The alias the base class declares for an action's goal handle type."""
-        return names.snake_to_camel(action.id) + ("GoalHandle" if action.role == "server" else "ClientGoalHandle")
+    def goal_handle(self, action) -> str:
+        """The alias the base class declares for the goal handle type of an action server or client."""
+        return self.type(action.type) + ("GoalHandle" if action.role == "server" else "ClientGoalHandle")
 
     @staticmethod
     def qos(qos) -> str:
@@ -55,7 +70,7 @@ class Ros2Cpp(CppDialect):
         """Statements that fill a ParameterDescriptor named `name` (4-space indented)."""
         lines = [f"rcl_interfaces::msg::ParameterDescriptor {name};"]
         if parameter.description:
-            lines.append(f"{name}.description = {self.string(parameter.description)};")
+            lines.append(f"{name}.description ={BREAK} {self.string(parameter.description, split=True)};")
         if parameter.read_only:
             lines.append(f"{name}.read_only = true;")
         if parameter.range:

@@ -31,7 +31,7 @@ class Ros2Python(PythonDialect):
         """The ParameterDescriptor argument of declare_parameter(), one field per line."""
         fields = []
         if parameter.description:
-            fields.append(f"description={literal(parameter.description)}")
+            fields.append(f"description={literal(parameter.description, split=True)}")
         if parameter.read_only:
             fields.append("read_only=True")
         if parameter.range:

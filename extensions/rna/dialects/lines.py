@@ -1,0 +1,156 @@
+"""Line breaking by length: a template marks where a line may change; it changes only if too long.
+
+Templates write each statement, comment or docstring on one line with markers:
+
+- `{{ br }}` (BREAK) where the linters of the generated package accept a line break;
+- `{{ sbr }}` (SPLIT) inside a string literal, where it may be cut in two;
+- `{{ opt }}...{{ endopt }}` (OPTIONAL) around words a comment or docstring can do
+  without, such as a long topic name, or `{{ opt }}long{{ alt }}short{{ endopt }}` to give
+  the words that replace them.
+
+`fit()` leaves a line that fits as it is, markers removed. A line that does not fit loses
+its optional words first; if it still does not fit it breaks at its first marker, then
+takes as many pieces per line as fit, each continuation line indented by the language's
+continuation indent (ROS's uncrustify: 2, flake8's hanging indent: 4) from the line's own.
+"""
+
+from __future__ import annotations
+
+import re
+import textwrap
+
+# Private-use characters: no text reaches the output raw with them (rna.names refuses
+# them in free text and the dialects escape them in literals), and unlike the ASCII
+# separators neither str.split() nor str.splitlines() treats them as white space.
+BREAK = "\ue000"
+SPLIT = "\ue001"
+OPTIONAL = "\ue002"
+OPTIONAL_END = "\ue003"
+ALTERNATIVE = "\ue004"
+
+# (column limit, continuation indent) of the linters each language is checked with:
+# ament_cpplint / ament_uncrustify (100 columns) and ament_flake8 (99).
+LIMITS = {"cpp": (100, 2), "python": (99, 4)}
+
+_OPTIONAL_WORDS = re.compile(
+    f"{OPTIONAL}[^{OPTIONAL_END}{ALTERNATIVE}]*(?:{ALTERNATIVE}([^{OPTIONAL_END}]*))?{OPTIONAL_END}")
+_PREFIX = re.compile(r"[A-Za-z]*$")
+
+
+def _open_literal(text: str) -> tuple[str, str]:
+    """(prefix, quote) of the string literal left open at the end of `text`, or ("", "")."""
+    quote, prefix, escaped = "", "", False
+    for index, char in enumerate(text):
+        if escaped:
+            escaped = False
+        elif char == "\\" and quote:
+            escaped = True
+        elif quote and char == quote:
+            quote = ""
+        elif not quote and char in "'\"":
+            quote, prefix = char, _PREFIX.search(text[:index])[0]
+    return (prefix, quote) if quote else ("", "")
+
+
+def _pieces(line: str) -> list[tuple[str, str]]:
+    """(marker before it, text) of each piece of the line; a piece cut inside a string
+    literal closes it, and the next one reopens it with the same prefix (f'...')."""
+    pieces, current, marker = [], "", ""
+    for char in line:
+        if char in (BREAK, SPLIT):
+            prefix, quote = _open_literal("".join(text for _, text in pieces) + current) if char == SPLIT else ("", "")
+            pieces.append((marker, current + quote))
+            current, marker = prefix + quote, char
+        else:
+            current += char
+    pieces.append((marker, current))
+    return pieces
+
+
+def _join(current: str, marker: str, piece: str) -> str:
+    """A piece appended to the same line: a cut string literal is mended."""
+    if marker == SPLIT:
+        reopened = len(piece) - len(piece.lstrip("bBfFrRuU")) + 1
+        return current[:-1] + piece[reopened:]
+    return current + piece
+
+
+def _depth(text: str, depth: int = 0) -> int:
+    """The parenthesis depth after `text` (strings and comments skipped), starting at `depth`."""
+    quote, escaped = "", False
+    for index, char in enumerate(text):
+        if escaped:
+            escaped = False
+        elif quote:
+            escaped = char == "\\"
+            quote = "" if char == quote else quote
+        elif char in "'\"":
+            quote = char
+        elif char == "#" or text.startswith("//", index):
+            break
+        elif char in "([":
+            depth += 1
+        elif char in ")]":
+            depth -= 1
+    return depth
+
+
+def fit_line(line: str, language: str, inside: bool = False) -> list[str]:
+    """One line, or the lines it is broken into; `inside`: the line continues an open bracket."""
+    width, step = LIMITS[language]
+    whole = re.sub(f"{ALTERNATIVE}[^{OPTIONAL_END}]*", "", line).replace(OPTIONAL, "").replace(OPTIONAL_END, "")
+    pieces = _pieces(whole)
+    joined = pieces[0][1]
+    for marker, piece in pieces[1:]:
+        joined = _join(joined, marker, piece)
+    if len(joined) <= width:
+        return [joined]
+    if OPTIONAL in line:
+        return fit_line(_OPTIONAL_WORDS.sub(lambda match: match[1] or "", line), language, inside)
+    if len(pieces) == 1:
+        return [joined]
+    # Broken, a line always breaks at its first BREAK (a hanging indent, which flake8
+    # and uncrustify both accept after an opening parenthesis), then fills each line.
+    # A line that itself continues an open bracket keeps its indent for what follows,
+    # unless it opens another one (or, for uncrustify, continues an expression, not a list).
+    own = len(line) - len(line.lstrip(" "))
+    head = pieces[0][1].rstrip()
+    keep = inside and _depth(head) <= 0 and (language == "python" or head.endswith(","))
+    # uncrustify does not indent a declaration's name that follows a template's closing '>'.
+    keep = keep or (language == "cpp" and head.endswith(">"))
+    indent = own if keep else own + step
+    lines, current = [], head
+    for index, (marker, piece) in enumerate(pieces[1:]):
+        longer = _join(current, marker, piece)
+        if (index > 0 or marker == SPLIT) and len(longer) <= width:
+            current = longer
+            continue
+        lines.append(current.rstrip())
+        # uncrustify indents what continues an expression (after '<<', '&&'...) once more
+        # than what continues a list (after '(' or ',').
+        if language == "cpp" and index > 0 and not lines[-1].endswith((",", "(")):
+            indent += step
+        current = " " * indent + piece.lstrip()
+    lines.append(current)
+    return lines
+
+
+def fit(text: str, language: str) -> str:
+    """Every line of `text` that is too long shortened or broken at its markers; markers removed."""
+    lines, depth = [], 0
+    for line in text.split("\n"):
+        lines += fit_line(line, language, inside=depth > 0)
+        depth = max(_depth(line, depth), 0)
+    return "\n".join(lines)
+
+
+def reflow(text: str, prefix: str = "", width: int = 99) -> str:
+    """Prose re-wrapped to `width` columns, each line starting with `prefix` ('// ', '# ' or '').
+
+    Paragraphs are separated by blank lines; a word longer than a line stays whole.
+    """
+    paragraphs = [" ".join(block.split()) for block in re.split(r"\n\s*\n", text.strip())]
+    wrapped = [textwrap.wrap(paragraph, width - len(prefix), break_long_words=False, break_on_hyphens=False)
+               for paragraph in paragraphs]
+    blank = prefix.rstrip()
+    return f"\n{blank}\n".join("\n".join(prefix + line for line in lines) for lines in wrapped)

@@ -1,0 +1,101 @@
+"""How the dialects spell code: literals that read back as the text given, and lines broken by length."""
+
+from __future__ import annotations
+
+import ast
+
+import pytest
+
+from rna import wording
+from rna.dialects import cpp, lines, python
+from rna.dialects.lines import ALTERNATIVE as A
+from rna.dialects.lines import BREAK as B
+from rna.dialects.lines import OPTIONAL as O
+from rna.dialects.lines import OPTIONAL_END as E
+from rna.dialects.lines import SPLIT as S
+
+AWKWARD = ["it's", 'say "hi"', "both ' and \"", "a\nb\rc\td", "C:\\xdata\\N{x}", "bell\x07", "\u2028 and \ue000",
+           '"""', "{{ x }} {% y %}", "café ☕", "what??/ and ??=", "", "ends with \\"]
+
+
+@pytest.mark.parametrize("text", AWKWARD)
+def test_python_literals_read_back_as_the_text(text):
+    assert ast.literal_eval(python.literal(text)) == text
+    assert "\n" not in python.literal(text)
+
+
+@pytest.mark.parametrize("text", AWKWARD)
+def test_cpp_strings_escape_what_cpp_would_read_otherwise(text):
+    spelled = cpp.string(text)
+    assert spelled.startswith('"') and spelled.endswith('"') and "\n" not in spelled
+    assert "??" not in spelled.replace("?\\?", "")  # no trigraph can form
+    assert not any(ord(char) < 0x20 for char in spelled)
+
+
+def test_cpp_control_characters_are_octal_escapes():
+    assert cpp.string("a\x01b") == '"a\\001b"'
+    assert cpp.string("??=") == '"?\\?="'
+
+
+def test_a_line_that_fits_loses_its_markers_only():
+    assert lines.fit(f"    x_ ={B} f({B}a,{B} b);", "cpp") == "    x_ = f(a, b);"
+    assert lines.fit(f'        """Handle a message{O} from /x{E}."""', "python") == (
+        '        """Handle a message from /x."""')
+
+
+def test_a_long_cpp_line_breaks_at_its_markers_the_way_uncrustify_wants():
+    member = "a_really_long_member_name_for_the_publisher_"
+    topic = "/initialpose_with_covariance_estimate_from_the_localisation"
+    text = f'    {member} ={B} create_publisher<PoseWithCovarianceStamped>({B}"{topic}",{B} qos);'
+    assert lines.fit(text, "cpp").split("\n") == [
+        f"    {member} =",
+        "      create_publisher<PoseWithCovarianceStamped>(",
+        f'      "{topic}", qos);',
+    ]
+
+
+def test_an_expression_continues_one_step_further_than_a_list():
+    name = "maximum_linear_velocity_in_meters_per_second_when"
+    text = f'    ROS_INFO_STREAM({B}"{name}: " <<{B} {name}_);'
+    assert lines.fit(text, "cpp").split("\n") == [
+        "    ROS_INFO_STREAM(", f'      "{name}: " <<', f"        {name}_);"]
+
+
+def test_python_continuation_lines_share_the_hanging_indent():
+    head = "        self.x = self.create_subscription("
+    topic = "'/camera/depth/points_filtered_and_downsampled_for_the_local_planner'"
+    args = f"            PointCloud2,{B} {topic},{B} self.on_camera_depth_points,"
+    fitted = lines.fit(head + "\n" + args, "python").split("\n")
+    assert fitted[1:] == (
+        ["            PointCloud2,", f"            {topic},", "            self.on_camera_depth_points,"]
+    )
+
+
+def test_a_string_is_cut_between_words_and_keeps_its_prefix():
+    text = f"        self.get_logger().info({B}f'{'word ' * 10}{S}answered: {{result}} and a few more words here')"
+    fitted = lines.fit(text, "python").split("\n")
+    assert all(len(line) <= 99 for line in fitted)
+    assert fitted[-1].lstrip().startswith("f'answered")
+
+
+def test_optional_words_go_first_and_alternatives_replace_them():
+    long = "x" * 80
+    assert lines.fit(f'        """Handle a message{O} from /{long}{E}."""', "python") == (
+        '        """Handle a message."""'
+    )
+    assert lines.fit(f'        """Work on {O}a {long}{A}a{E} goal."""', "python") == '        """Work on a goal."""'
+
+
+def test_long_includes_continue_on_the_next_line():
+    header = "pkg_interfaces/action/" + "a" * 80 + ".hpp"
+    assert cpp.include(header) == f'#include \\\n  "{header}"'
+    assert cpp.include("rclcpp/rclcpp.hpp") == '#include "rclcpp/rclcpp.hpp"'
+
+
+def test_prose_is_reflowed_with_its_comment_prefix():
+    text = lines.reflow("one two three\nfour\n\nfive", "// ", 13)
+    assert text == "// one two\n// three four\n//\n// five"
+
+
+def test_markdown_cells_escape_pipes_and_html():
+    assert wording.markdown_cell("a | b <c> & d") == "a \\| b &lt;c&gt; &amp; d"
