@@ -39,7 +39,8 @@ def main(project: Path, answers_file: str) -> int:
             new, explained = edit(text, package)
         except (OSError, ValueError) as error:
             print(f"rna-template: could not add the {package.nodes[0].name} node to {name}: {error}. "
-                  "Add its build lines by hand (docs/updating.md shows them).", file=sys.stderr)
+                  "Add its build lines by hand (docs/pages/how-to/node-in-an-existing-package.md shows them).",
+                  file=sys.stderr)
             failed = True
             continue
         if new != text:

@@ -2,8 +2,9 @@
 
 The update-tier tests start where a user starts: a fresh `git clone` of this repository,
 which has no tags (they do not travel with it). They run the README's first command as
-written there, commit the demo as the after-copy message and docs/updating.md say, and
-grow it. The fast tests check the pieces: the recorded template path and the message.
+written there, commit the demo as the after-copy message and
+docs/pages/explanation/update-model.md say, and grow it. The fast tests check the pieces:
+the recorded template path and the message.
 """
 
 from __future__ import annotations
@@ -92,7 +93,7 @@ def test_inside_a_repository_the_message_only_says_commit(template_dir, tmp_path
 
 
 def test_the_settings_file_trusts_the_template_and_gives_defaults(template_dir, tmp_path):
-    """docs/install.md: a trusted template needs no --trust; `defaults` answer for the user."""
+    """docs/pages/how-to/trust-and-settings.md: a trusted template needs no --trust; `defaults` answer for the user."""
     settings = tmp_path / "settings.yml"
     settings.write_text(yaml.safe_dump({"trust": [str(template_dir)],
                                         "defaults": {"maintainer": "Grace Hopper", "license": "MIT"}}))
@@ -140,7 +141,7 @@ def shell(command: str | list[str], cwd: Path, env: dict[str, str]) -> subproces
 
 
 def commit_as_documented(project: Path, env: dict[str, str]) -> None:
-    """What the after-copy message and docs/updating.md say for a folder that is not a repository yet."""
+    """What the after-copy message and docs/pages/explanation/update-model.md say for a folder not yet in git."""
     shell('git init && git add -A . && git commit -m "rna_demo from rna-template"', project, env)
 
 

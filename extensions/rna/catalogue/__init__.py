@@ -1,7 +1,7 @@
 """The message, service and action types of the standard interface packages, per distro.
 
 Each `<distro>.json` beside this file is written by tests/tools/make_catalogue.py from the
-packages' own definition files and says where they came from and when (docs/catalogue.md).
+packages' own definition files and says where they came from and when (docs/pages/reference/catalogue.md).
 Only the packages a catalogue lists are checked: types of any other package stay allowed.
 """
 
