@@ -42,6 +42,7 @@ try:
     import rna.distros
     import rna.dialects.lines
     import rna.dialects.python
+    import rna.lab
     import rna.layout
     import rna.names
     import rna.wording
@@ -137,6 +138,14 @@ def package_files() -> str:
     return "\n".join("/" + path for path in rna.layout.PACKAGE_FILES)
 
 
+def lab() -> dict:
+    """The lab's choices (extensions/lab.yml), for defaults in copier.yml; a broken file is one line."""
+    try:
+        return rna.lab.load()
+    except rna.lab.LabError as error:
+        raise UserMessageError(f"rna-template: {error}") from None
+
+
 def git_config(key: str) -> str:
     """The user's git setting (user.name, user.email) as a default answer, or ""."""
     try:
@@ -189,7 +198,8 @@ class RnaExtension(Extension):
             builds_interfaces=rna.distros.BUILDS_INTERFACES, languages=rna.distros.languages,
             default_description=default_description, default_nodes=default_nodes,
             existing_package=existing_package, found_interfaces=found_interfaces, git_config=git_config,
-            in_git_work_tree=in_git_work_tree, login_name=getpass.getuser, package_files=package_files,
+            in_git_work_tree=in_git_work_tree, lab=lab, docs_url=rna.lab.docs_url, login_name=getpass.getuser,
+            package_files=package_files,
             python_init_file=python_init_file, user_files=user_files,
             # Line-breaking markers (rna/dialects/lines.py).
             br=rna.dialects.lines.BREAK, sbr=rna.dialects.lines.SPLIT,

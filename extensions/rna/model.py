@@ -280,6 +280,10 @@ class Package:
     definitions: tuple[Definition, ...] = ()
     interfaces_location: str = "separate"  # or "package": this package builds them
     target: str = "package"  # or "node": one node added to a package the template did not make
+    # The lab's own (extensions/lab.yml): dependencies of every package, header lines, files.
+    lab_dependencies: tuple[tuple[str, str], ...] = ()
+    lab_header: str = ""
+    lab_files: tuple[dict, ...] = ()
 
     @property
     def ros(self) -> int:
@@ -366,6 +370,12 @@ class Package:
         return tuple(Dependency(dep, dep in cpp or self.ros == 1) for dep in sorted(everything))
 
     @property
+    def lab_extra_dependencies(self) -> tuple[tuple[str, str], ...]:
+        """(tag, package) the lab adds that the nodes do not already depend on."""
+        named = {dependency.name for dependency in self.dependencies}
+        return tuple((tag, name) for tag, name in self.lab_dependencies if name not in named and name != self.name)
+
+    @property
     def cpp_dependencies(self) -> tuple[str, ...]:
         return tuple(dep.name for dep in self.dependencies if dep.build)
 
@@ -374,8 +384,11 @@ class Package:
         return f"Copyright {self.copyright_year} {self.copyright_holder}"
 
     def header(self, comment: str) -> str:
-        """The copyright and license comment block that starts each source file."""
-        return self.license.header(self.copyright_line, comment)
+        """The copyright and license comment block that starts each source file, then the lab's lines."""
+        block = self.license.header(self.copyright_line, comment)
+        if self.lab_header:
+            block += f"\n{comment}\n" + "\n".join(f"{comment} {line}".rstrip() for line in self.lab_header.splitlines())
+        return block
 
     @property
     def license_text(self) -> str:

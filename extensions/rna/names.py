@@ -28,10 +28,10 @@ CPP_KEYWORDS = frozenset(
 )
 
 # REP 144: lowercase letters, digits and single underscores, starting with a letter.
-_PACKAGE_NAME = re.compile(r"[a-z](?:[a-z0-9]|_(?=[a-z0-9]))*")
-_SNAKE_CASE = re.compile(r"[a-z](?:[a-z0-9]|_(?=[a-z0-9]))*")
-_CAMEL_CASE = re.compile(r"[A-Z][A-Za-z0-9]*")
-_NAME_TOKEN = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+PACKAGE_NAME = re.compile(r"[a-z](?:[a-z0-9]|_(?=[a-z0-9]))*")
+SNAKE_CASE = re.compile(r"[a-z](?:[a-z0-9]|_(?=[a-z0-9]))*")
+CAMEL_CASE = re.compile(r"[A-Z][A-Za-z0-9]*")
+NAME_TOKEN = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 # Longest names, so that every line the template writes fits the 100 columns ROS's
 # linters allow: the C++ header guard <PACKAGE>__<NODE>_BASE_HPP_ after `#endif  // ` and
@@ -46,7 +46,7 @@ TYPE_NAME_MAX = 50
 HEADER_PATH_MAX = 96
 
 # catkin_pkg's own check of a maintainer's e-mail address (catkin_make fails on others).
-_EMAIL = re.compile(r"^[-a-zA-Z0-9_%+]+(\.[-a-zA-Z0-9_%+]+)*@[-a-zA-Z0-9%]+(\.[-a-zA-Z0-9%]+)*\.[a-zA-Z]{2,}$")
+EMAIL = re.compile(r"^[-a-zA-Z0-9_%+]+(\.[-a-zA-Z0-9_%+]+)*@[-a-zA-Z0-9%]+(\.[-a-zA-Z0-9%]+)*\.[a-zA-Z]{2,}$")
 
 # Parameters the ROS 2 client libraries declare on every node themselves.
 ROS2_DECLARED_PARAMETERS = frozenset({"use_sim_time", "start_type_description_service"})
@@ -90,7 +90,7 @@ def package_name_error(name: object) -> str | None:
     """REP 144 package names, which also become a C++ namespace and a Python package."""
     if not isinstance(name, str) or not name:
         return "a package name is required"
-    if not _PACKAGE_NAME.fullmatch(name):
+    if not PACKAGE_NAME.fullmatch(name):
         return (
             f"'{name}' breaks REP 144: use lowercase letters, digits and single "
             "underscores, starting with a letter"
@@ -118,7 +118,7 @@ def node_name_error(name: object) -> str | None:
     """ROS node names that also name a source file, a Python module and a class."""
     if not isinstance(name, str) or not name:
         return "a node name is required"
-    if not _SNAKE_CASE.fullmatch(name):
+    if not SNAKE_CASE.fullmatch(name):
         return (
             f"'{name}' is not a valid node name: use lower_snake_case (letters, digits and "
             "single underscores, starting with a letter)"
@@ -157,7 +157,7 @@ def topic_name_error(name: object, what: str = "topic") -> str | None:
     for token in rest.split("/"):
         if not token:
             return f"{what} '{name}' must not contain '//'"
-        if not _NAME_TOKEN.fullmatch(token):
+        if not NAME_TOKEN.fullmatch(token):
             return (
                 f"{what} '{name}': each part between '/' uses letters, digits and '_' "
                 "and does not start with a digit"
@@ -169,7 +169,7 @@ def parameter_name_error(name: object, ros: int = 2) -> str | None:
     """Parameter names: snake_case, valid as a ROS 1 and a ROS 2 parameter name and as a member."""
     if not isinstance(name, str) or not name:
         return "a parameter name is required"
-    if not _SNAKE_CASE.fullmatch(name):
+    if not SNAKE_CASE.fullmatch(name):
         return (
             f"'{name}' is not a valid parameter name: use lower_snake_case (letters, digits "
             "and single underscores, starting with a letter)"
@@ -184,7 +184,7 @@ def parameter_name_error(name: object, ros: int = 2) -> str | None:
 
 def identifier_error(name: object, what: str) -> str | None:
     """A code name for an endpoint or a timer, given or derived from a ROS name."""
-    if not isinstance(name, str) or not _SNAKE_CASE.fullmatch(name):
+    if not isinstance(name, str) or not SNAKE_CASE.fullmatch(name):
         return f"{what} '{name}' must be lower_snake_case"
     if too_long(name, IDENTIFIER_MAX):
         return too_long(name, IDENTIFIER_MAX, f"{what} ")
@@ -210,7 +210,7 @@ def header_path_error(package: str, kind: str, name: str) -> str | None:
 
 
 def email_error(address: object) -> str | None:
-    if not isinstance(address, str) or not _EMAIL.fullmatch(address.strip()):
+    if not isinstance(address, str) or not EMAIL.fullmatch(address.strip()):
         return f"'{address}' is not an e-mail address catkin_pkg accepts (name@host.domain)"
     return None
 
@@ -225,7 +225,7 @@ def one_line_error(text: object) -> str | None:
 
 
 def is_camel_case(name: str) -> bool:
-    return bool(_CAMEL_CASE.fullmatch(name))
+    return bool(CAMEL_CASE.fullmatch(name))
 
 
 def camel_to_snake(name: str) -> str:

@@ -15,13 +15,14 @@ from functools import cached_property
 import yaml
 
 from .. import distros, names, wording
+from .. import lab as lab_choices
 from ..definitions import Definition
 from ..interfaces import InterfaceType
 from ..licenses import get_license
 from ..model import Node, Package
 from .interfaces import parse_definitions
 from .nodes import Types, parse_node, parse_nodes
-from .shapes import load_yaml, split_list
+from ..shapes import load_yaml, split_list
 
 # The questions whose answers make the package, in the order they are checked.
 QUESTIONS = ("package_name", "description", "maintainer", "maintainer_email", "license",
@@ -67,8 +68,9 @@ def _one_line(value: object) -> str:
 class Answers:
     """The answers given so far, each read once, on first use."""
 
-    def __init__(self, answers: Mapping) -> None:
+    def __init__(self, answers: Mapping, lab: Mapping | None = None) -> None:
         self.raw = dict(answers)
+        self.lab = lab_choices.load() if lab is None else lab
         if self.ros == 1 and not self.raw.get("build_type"):
             self.raw["build_type"] = "catkin"  # not asked, so not in the answers file either
 
@@ -140,7 +142,7 @@ class Answers:
         """How node answers read types: with the interfaces the answers define."""
         home = self.interfaces_home
         own = {(d.kind, d.name): InterfaceType(home, d.kind, d.name, self.ros) for d in self.definitions}
-        return Types(self.ros, own, self.raw.get("ros_distro"))
+        return Types(self.ros, own, self.raw.get("ros_distro"), self.lab.get("qos"))
 
     @cached_property
     def nodes(self) -> tuple[Node, ...]:
@@ -214,6 +216,10 @@ class Answers:
             definitions=read["interfaces"],
             interfaces_location=read["interfaces_location"],
             target=read["target"],
+            lab_dependencies=tuple(lab_choices.dependencies(self.lab)),
+            lab_header=self.lab.get("header", ""),
+            # A node added to a package the template did not make brings its own files only.
+            lab_files=() if read["target"] == "node" else tuple(lab_choices.files(self.lab)),
         )
 
     @property

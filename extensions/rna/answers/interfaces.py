@@ -7,7 +7,7 @@ from collections.abc import Mapping
 from ..definitions import SECTIONS, Definition, parse_field
 from ..interfaces import KIND_NAMES
 from ..names import camel_to_snake, header_path_error, is_camel_case, type_name_error
-from .shapes import check_keys, load_yaml
+from ..shapes import check_keys, load_yaml
 
 
 def parse_definitions(value: object, *, package: str, ros: int) -> tuple[Definition, ...]:

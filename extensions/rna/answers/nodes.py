@@ -18,7 +18,7 @@ from .. import catalogue, distros, names
 from ..interfaces import InterfaceType, parse_interface
 from ..model import BASE_MEMBERS, Action, Node, Qos, Service, Timer, Topic
 from ..parameters import INT_RANGE, Parameter, ParameterType, coerce_default, infer_type, parse_type
-from .shapes import as_list, check_keys, load_yaml
+from ..shapes import as_list, check_keys, load_yaml
 
 QOS_PROFILES = {"sensor_data": 5}
 
@@ -30,6 +30,7 @@ class Types:
     ros: int = 2
     own: Mapping[tuple[str, str], InterfaceType] = field(default_factory=dict)
     distro: str | None = None  # checks the standard packages' types against its catalogue
+    default_qos: object = None  # of an endpoint that names none (the lab's)
 
     def parse(self, text: object, kind: str) -> InterfaceType:
         """`pkg/kind/Name`, `pkg/Name`, or the bare `Name` of an interface defined here."""
@@ -47,9 +48,9 @@ def _split_short(text: str, fields: int) -> list[str]:
     return [part.strip() for part in text.split(":", fields - 1)]
 
 
-def _parse_qos(value: object, what: str) -> Qos:
+def _parse_qos(value: object, what: str, default: object = None) -> Qos:
     if value is None or value == "":
-        return Qos()
+        return _parse_qos(default, what) if default not in (None, "") else Qos()
     if isinstance(value, bool):
         raise ValueError(f"{what}: qos must be a history depth (e.g. 10) or 'sensor_data'")
     if isinstance(value, int) or (isinstance(value, str) and value.isdigit()):
@@ -90,7 +91,8 @@ def _parse_topic(item: object, role: str, types: Types) -> Topic:
     if error:
         raise ValueError(f"{role}: {error}")
     interface = types.parse(item.get("type"), "msg")
-    return Topic(role, topic, interface, _parse_qos(item.get("qos"), what), _parse_id(item.get("id"), topic, what))
+    qos = _parse_qos(item.get("qos"), what, types.default_qos)
+    return Topic(role, topic, interface, qos, _parse_id(item.get("id"), topic, what))
 
 
 def _parse_service_or_action(item: object, cls: type, kind: str, role: str, types: Types):

@@ -1,4 +1,4 @@
-"""The shapes answers come in: YAML text, lists, comma-separated prompt answers, known keys."""
+"""The shapes answers and the lab file come in: YAML text, lists, comma-separated prompt answers, known keys."""
 
 from __future__ import annotations
 
@@ -61,4 +61,4 @@ def check_keys(item: Mapping, allowed: Iterable[str], what: str) -> None:
         if key not in allowed:
             close = difflib.get_close_matches(str(key), allowed, n=1)
             hint = f" (did you mean '{close[0]}'?)" if close else f" (known: {', '.join(allowed)})"
-            raise ValueError(f"{what}: unknown key '{key}'{hint}")
+            raise ValueError(f"{what + ': ' if what else ''}unknown key '{key}'{hint}")
