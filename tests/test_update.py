@@ -26,7 +26,7 @@ from support.packages import dependency_names  # noqa: E402
 from support.template_repo import (  # noqa: E402
     FLAVORS, NEW_VERSION, OLD_VERSION, PACKAGE, Flavor, answers_of, append_after, commit_all, conflict_excerpts,
     conflicted_files, find_node, generate_project, git, managed_lines, missing_block, replace_text, run_update,
-    tree_differences, unmanaged_lines, user_answers,
+    summary_of, tree_differences, unmanaged_lines, user_answers,
 )
 
 pytest_plugins = ("support.template_repo",)
@@ -160,6 +160,33 @@ def test_add_nodes(project, current_template, tmp_path, flavor_name):
 
     # An untouched package that grew equals a fresh copy made with the grown answers.
     assert fresh_copy_differences(destination, current_template, tmp_path) == []
+
+
+# ─── What an update says ──────────────────────────────────────────────────────
+
+
+def test_an_update_ends_with_a_summary_instead_of_internal_command_lines(project):
+    flavor = Flavor("ament_python")
+    destination = project("ament_python")
+    edit_user_file(destination, flavor, "driver")
+    replace_text(destination / flavor.config_file("driver"), "max_speed: 0.5", "max_speed: 0.8")
+    commit_all(destination)
+    nodes = flavor.answers["nodes"] + [node_answers(flavor, "planner", "python", **PLANNER)]
+    find_node(nodes, "driver")["parameters"][0]["default"] = 2.5  # merged with the tuned max_speed
+    find_node(nodes, "monitor")["parameters"] = ["limit:int=7"]  # a file the user never edited
+
+    result = run_update(destination, {"nodes": nodes})
+    assert_clean_update(result, destination)
+
+    summary = summary_of(result.output)
+    assert {flavor.config_file("planner"), flavor.user_file("planner"), flavor.base_file("planner")} <= set(
+        summary["added"]), result
+    assert flavor.config_file("monitor") in summary["updated"], result
+    assert flavor.config_file("driver") in summary["merged"], result
+    assert flavor.user_file("driver") not in str(summary), "an edited file that did not change is not listed"
+    # Copier names the migration it runs: a plain shell line, not a Python list of temporary paths.
+    task_lines = [line for line in result.stderr.splitlines() if "Running task" in line]
+    assert all("['" not in line and "after_update.py" in line for line in task_lines), result
 
 
 # ─── Adding endpoints to existing nodes ───────────────────────────────────────

@@ -187,6 +187,31 @@ def run_update(project: Path, data: dict | None = None, vcs_ref: str | None = No
 # ─── What an update left behind ───────────────────────────────────────────────
 
 
+SUMMARY_HEADING = "rna-template: what this update changed"
+
+
+def summary_of(output: str) -> dict[str, list[str]]:
+    """The file lists of the summary an update ends with: label -> paths (`old -> new` for renames)."""
+    assert SUMMARY_HEADING in output, f"the update printed no summary\n{output}"
+    lines = output[output.index(SUMMARY_HEADING):].splitlines()[1:]
+    found: dict[str, list[str]] = {}
+    label = None
+    for line in lines:
+        match = re.match(r"^  (added|updated|merged|removed|renamed):\s+(.*)$", line)
+        if match:
+            label = match[1]
+            found[label] = []
+            text = match[2]
+        elif label and line.startswith(" " * 12) and line.strip():
+            text = line.strip()
+        else:
+            label = None
+            continue
+        found[label] += [item.strip() for item in text.split(",") if item.strip()]
+    return found
+
+
+
 def project_files(project: Path) -> list[Path]:
     return sorted(p for p in project.rglob("*") if p.is_file() and ".git" not in p.relative_to(project).parts)
 
