@@ -218,20 +218,3 @@ def test_long_python_text_is_split_to_fit():
     lines = long.splitlines()
     assert lines[0] == "(" and all(len(line) <= 99 for line in lines)
     assert eval(long) == "word " * 40  # noqa: S307 - our own literal
-
-
-ROS2_CONFIG = "/**:\n  ros__parameters:\n    # Gain\n    gain: {gain}\n\n    frame_id: {frame}\n\n"
-
-
-def test_config_files_merge_by_parameter():
-    old = ROS2_CONFIG.format(gain=1.0, frame="odom")
-    mine = ROS2_CONFIG.format(gain=1.8, frame="odom") + "    mine: true\n"
-    new = ROS2_CONFIG.format(gain=1.0, frame="map")
-    merged = configs.merge(old, mine, new)
-    assert configs.parameters(merged) == {"gain": 1.8, "frame_id": "map", "mine": True}
-    assert "    # Gain\n    gain: 1.8\n" in merged
-    assert configs.merge(old, mine, ROS2_CONFIG.format(gain=2.0, frame="odom")) is None  # tuned and changed
-    assert configs.merge(old, mine, ROS2_CONFIG.format(gain=1.8, frame="odom")) is not None  # same value
-    ros1 = configs.merge("gain: 1.0\n", "gain: 3.0\n", "gain: 1.0\n\nrate: 5\n")
-    assert configs.parameters(ros1) == {"gain": 3.0, "rate": 5}
-    assert configs.merge("a: [", "a: 1", "a: 2") is None

@@ -179,8 +179,9 @@ def test_an_update_ends_with_a_summary_instead_of_internal_command_lines(project
     assert_clean_update(result, destination)
 
     summary = summary_of(result.output)
-    assert {flavor.config_file("planner"), flavor.user_file("planner"), flavor.base_file("planner")} <= set(
-        summary["added"]), result
+    added = {flavor.config_file("planner"), flavor.user_file("planner", "python"),
+             flavor.base_file("planner", "python")}
+    assert added <= set(summary["added"]), result
     assert flavor.config_file("monitor") in summary["updated"], result
     assert flavor.config_file("driver") in summary["merged"], result
     assert flavor.user_file("driver") not in str(summary), "an edited file that did not change is not listed"

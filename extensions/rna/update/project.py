@@ -1,0 +1,118 @@
+"""The project being updated, seen three ways: committed, rendered by the old version, by the new one.
+
+`copier update` requires a clean git project, so the last commit holds exactly what the
+user had before the update. The old and new renders are fresh copies of the template
+(old version with the old answers, new version with the new ones) in scratch folders:
+together they tell, for every file, whether the user edited it and whether the template
+changed it.
+"""
+
+from __future__ import annotations
+
+import subprocess
+from dataclasses import dataclass, field
+from pathlib import Path
+
+
+def git(project: Path, *args: str, check: bool = True, stdin: str | None = None) -> subprocess.CompletedProcess:
+    return subprocess.run(["git", *args], cwd=project, capture_output=True, text=True, check=check, input=stdin)
+
+
+def render(template: str, commit: str, answers: dict, destination: Path) -> Path:
+    """A fresh copy of `template` at `commit` with `answers`, without tasks or migrations."""
+    import copier
+
+    data = {key: value for key, value in answers.items() if not key.startswith("_")}
+    copier.run_copy(template, destination, data=data, vcs_ref=commit, defaults=True,
+                    unsafe=True, quiet=True, skip_tasks=True)
+    return destination
+
+
+def files_under(root: Path) -> set[str]:
+    """Every file below `root` (relative paths), `.git` left out."""
+    return {str(path.relative_to(root)) for path in root.rglob("*")
+            if path.is_file() and ".git" not in path.relative_to(root).parts}
+
+
+def read(root: Path, path: str) -> str | None:
+    file = root / path
+    if not file.is_file():
+        return None
+    try:
+        return file.read_text()
+    except UnicodeDecodeError:
+        return file.read_bytes().decode("latin-1")  # compared, never parsed
+
+
+@dataclass
+class Render:
+    """A fresh copy of one template version, in a scratch folder."""
+
+    root: Path
+    files: set[str] = field(init=False)
+
+    def __post_init__(self) -> None:
+        self.files = files_under(self.root)
+
+    def text(self, path: str) -> str | None:
+        return read(self.root, path) if path in self.files else None
+
+
+@dataclass
+class Project:
+    """The destination folder of the update, and its last commit (what the user had)."""
+
+    root: Path
+    answers_file: str
+    _committed: dict[str, str | None] = field(default_factory=dict, init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        self.prefix = git(self.root, "rev-parse", "--show-prefix").stdout.strip()
+        listed = git(self.root, "ls-tree", "-r", "-z", "--name-only", "HEAD", "--", ".").stdout
+        self.committed_files = {name[len(self.prefix):] for name in listed.split("\0") if name}
+
+    def committed(self, path: str) -> str | None:
+        """The file as the user committed it, or None."""
+        if path not in self._committed:
+            shown = git(self.root, "show", f"HEAD:{self.prefix}{path}", check=False) \
+                if path in self.committed_files else None
+            self._committed[path] = shown.stdout if shown is not None and shown.returncode == 0 else None
+        return self._committed[path]
+
+    def text(self, path: str) -> str | None:
+        """The file as it is now."""
+        return read(self.root, path)
+
+    def write(self, path: str, text: str) -> None:
+        target = self.root / path
+        target.parent.mkdir(parents=True, exist_ok=True)
+        target.write_text(text)
+
+    def restore(self, path: str, to: str | None = None) -> None:
+        """Put the committed file back, at its place or at `to`, with its mode."""
+        target = self.root / (to or path)
+        target.parent.mkdir(parents=True, exist_ok=True)
+        target.write_text(self.committed(path) or "")
+        mode = git(self.root, "ls-tree", "HEAD", "--", f"{self.root / path}").stdout.split(" ", 1)[0]
+        if mode == "100755":
+            target.chmod(0o755)
+
+    def remove(self, path: str) -> None:
+        target = self.root / path
+        if target.is_file():
+            target.unlink()
+        for parent in target.relative_to(self.root).parents:
+            folder = self.root / parent
+            if folder == self.root or any(folder.iterdir()):
+                break
+            folder.rmdir()
+
+    def current_files(self) -> set[str]:
+        """Files in the project now that git does not ignore."""
+        listed = git(self.root, "ls-files", "-z", "--cached", "--others", "--exclude-standard", "--", ".").stdout
+        names = {name[len(self.prefix):] for name in listed.split("\0") if name}
+        return {name for name in names if (self.root / name).is_file()}
+
+    def resolve_in_index(self, path: str) -> None:
+        """Clear a conflict Copier recorded in the index for a file settled here."""
+        git(self.root, "reset", "-q", "--", path, check=False)

@@ -1,0 +1,94 @@
+"""What an update did, file by file, and what the user must do next: the last thing it prints.
+
+Each step of the after-update work records what it did in a `Report`; `summary()` adds
+what git shows (files added, updated, merged, removed) and writes a short text for an
+80-column terminal. The update fails (exit 1) when the report holds anything the user
+must act on: a conflict, an edited file the answers no longer make, code to port.
+"""
+
+from __future__ import annotations
+
+import textwrap
+from dataclasses import dataclass, field
+
+WIDTH = 80
+
+
+@dataclass
+class Report:
+    renamed: list[tuple[str, str]] = field(default_factory=list)  # (old path, new path)
+    kept: list[tuple[str, str]] = field(default_factory=list)  # (path, why)
+    to_port: list[tuple[str, str]] = field(default_factory=list)  # (path, what changed and where the starter is)
+    conflicts: list[str] = field(default_factory=list)
+    problems: list[str] = field(default_factory=list)  # other things the user must do, one line each
+    notes: list[str] = field(default_factory=list)  # said, nothing to do
+    merged: set[str] = field(default_factory=set)  # files this step merged itself
+
+    @property
+    def failed(self) -> bool:
+        return bool(self.kept or self.to_port or self.conflicts or self.problems)
+
+
+@dataclass(frozen=True)
+class Changes:
+    """How the project changed, from git's point of view: relative paths."""
+
+    added: list[str]
+    updated: list[str]  # the template's changes to files the user had not edited
+    merged: list[str]  # the template's changes merged with the user's edits
+    removed: list[str]
+
+
+def changes(before: dict[str, str], after: dict[str, str], generated_before: dict[str, str | None],
+            ignore: set[str]) -> Changes:
+    """`before`/`after`: path -> text of the project before and after; `generated_before`: the old render."""
+    added = sorted(set(after) - set(before) - ignore)
+    removed = sorted(set(before) - set(after) - ignore)
+    changed = sorted(path for path in set(before) & set(after) - ignore if before[path] != after[path])
+    merged = [path for path in changed if generated_before.get(path) != before[path]]
+    updated = [path for path in changed if path not in merged]
+    return Changes(added, updated, merged, removed)
+
+
+def _files_line(label: str, paths: list[str]) -> list[str]:
+    if not paths:
+        return []
+    text = f"  {label + ':':<10}" + ", ".join(paths)
+    return textwrap.wrap(text, WIDTH, subsequent_indent=" " * 12, break_on_hyphens=False, break_long_words=False)
+
+
+def _item_lines(path: str, why: str) -> list[str]:
+    return textwrap.wrap(f"    {path}: {why}", WIDTH, subsequent_indent=" " * 6, break_on_hyphens=False,
+                         break_long_words=False)
+
+
+def summary(report: Report, change: Changes, versions: str) -> str:
+    """The text printed at the end of every update."""
+    lines = [f"rna-template: what this update changed ({versions})"]
+    renamed = [f"{old} -> {new}" for old, new in report.renamed]
+    for label, paths in (("added", change.added), ("updated", change.updated),
+                         ("merged", sorted(set(change.merged) | report.merged)), ("removed", change.removed),
+                         ("renamed", renamed)):
+        lines += _files_line(label, paths)
+    if len(lines) == 1:
+        lines.append("  nothing: the package already matches these answers")
+    for note in report.notes:
+        lines += textwrap.wrap(f"  {note}", WIDTH, subsequent_indent="    ")
+    if report.kept:
+        lines.append("  kept (you had edited them; the answers no longer make them):")
+        for path, why in report.kept:
+            lines += _item_lines(path, why)
+    if report.to_port:
+        lines.append("  to port (the template changed what your code builds on):")
+        for path, why in report.to_port:
+            lines += _item_lines(path, why)
+    if report.conflicts:
+        lines.append("  conflicts (resolve the '<<<<<<< before updating' blocks or .rej files):")
+        lines += [f"    {path}" for path in report.conflicts]
+    for problem in report.problems:
+        lines += textwrap.wrap(f"  {problem}", WIDTH, subsequent_indent="    ")
+    if report.failed:
+        lines.append("Review with `git diff HEAD`; commit once the items above are done.")
+    else:
+        lines.append("Review with `git diff HEAD`, then commit.")
+    return "\n".join(lines)
