@@ -25,9 +25,9 @@ import pytest
 if "support.template_repo" not in sys.modules:  # its asserts explain themselves too
     pytest.register_assert_rewrite("support.template_repo")
 from support.template_repo import (  # noqa: E402
-    FLAVORS, NEW_VERSION, OLD_VERSION, Flavor, answers_of, append_after, commit_all, conflict_excerpts,
-    conflict_regions, conflicted_files, find_node, insert_before, missing_block, replace_text, run_update,
-    write_new_file,
+    FLAVORS, NEW_VERSION, OLD_VERSION, PACKAGE, Flavor, answers_of, append_after, broken_packages, commit_all,
+    conflict_excerpts, conflict_regions, conflicted_files, find_node, insert_before, kept_of, missing_block,
+    replace_text, run_update, write_new_file,
 )
 
 pytest_plugins = ("support.template_repo",)
@@ -413,3 +413,114 @@ def test_edit_inside_a_managed_block_conflicts_loudly(project, case):
     for line in user_lines:
         assert line.strip() in ours, (f"the user's line {line.strip()!r} is not on the 'before updating' side "
                                       f"in {path}:\n{(destination / path).read_text()}")
+
+
+# ─── Files the answers stop making ────────────────────────────────────────────
+# Any file the user edited is kept when the new answers no longer make it, and the
+# update fails naming it and why: the user decides what becomes of it.
+
+
+def with_languages(flavor: Flavor, nodes: list[dict]) -> list[dict]:
+    """The nodes with each one's language written out (as the answers file stores them)."""
+    return [{**node, "language": flavor.language(node["name"])} for node in nodes]
+
+
+def interfaces_added(project: Path, flavor: Flavor) -> None:
+    """The package as it is after an update that gave it a message, committed."""
+    nodes = with_languages(flavor, flavor.answers["nodes"])
+    find_node(nodes, "driver")["publishers"] = ["target:Target"]
+    result = run_update(project, {"interfaces": {"messages": [{"name": "Target", "fields": ["float64 x"]}]},
+                                  "nodes": nodes})
+    assert result.returncode == 0, result
+    commit_all(project, "a message")
+
+
+@dataclass(frozen=True)
+class Dropped:
+    """An edit to a file, then an answer change after which the template no longer makes that file."""
+
+    flavor: str
+    edit: Callable[[Path, Flavor], dict[str, list[str]]]  # returns path -> the user's lines
+    answers: Callable[[Flavor], dict]
+    why: str  # a word the reason given must hold
+    prepare: Callable[[Path, Flavor], None] | None = None
+
+
+def console_script(project: Path, flavor: Flavor) -> dict[str, list[str]]:
+    return {flavor.build_file: append_after(project / flavor.build_file,
+                                            "# END rna-template: add your own executables below",
+                                            ["            'calibrate = robot.calibrate:main',"])}
+
+
+def find_package_line(project: Path, flavor: Flavor) -> dict[str, list[str]]:
+    return {flavor.build_file: append_after(project / flavor.build_file,
+                                            "# END rna-template: add your own find_package() calls below",
+                                            ["find_package(tf2_ros REQUIRED)"])}
+
+
+def init_docstring(project: Path, flavor: Flavor) -> dict[str, list[str]]:
+    path = f"{PACKAGE}/{PACKAGE}/__init__.py"
+    return {path: write_over(project / path, ['"""The robot\'s Python code (mine)."""', ""])}
+
+
+def write_over(path: Path, lines: list[str]) -> list[str]:
+    path.write_text("\n".join(lines))
+    return lines
+
+
+def interfaces_build_files(project: Path, flavor: Flavor) -> dict[str, list[str]]:
+    home = f"{PACKAGE}_interfaces"
+    end = "<!-- END rna-template: add your own dependencies below -->"
+    return {f"{home}/package.xml": append_after(project / home / "package.xml", end, ["  <depend>std_msgs</depend>"]),
+            f"{home}/CMakeLists.txt": append_after(project / home / "CMakeLists.txt", "project(robot_interfaces)",
+                                                   ["# mine: the robot's messages"])}
+
+
+def tuned_config(project: Path, flavor: Flavor) -> dict[str, list[str]]:
+    path = flavor.config_file("driver")
+    return {path: replace_text(project / path, "max_speed: 0.5", "max_speed: 0.8")}
+
+
+def without(name: str) -> Callable[[Flavor], dict]:
+    return lambda flavor: {"nodes": with_languages(flavor, [n for n in flavor.answers["nodes"] if n["name"] != name])}
+
+
+DROPPED = {
+    "ament_python-setup.py-when-the-build-type-changes": Dropped(
+        "ament_python", console_script,
+        lambda f: {"build_type": "ament_cmake", "nodes": with_languages(f, f.answers["nodes"])}, "ament_cmake"),
+    "ament_cmake-CMakeLists.txt-when-the-build-type-changes": Dropped(
+        "ament_cmake", find_package_line,
+        lambda f: {"build_type": "ament_python", "nodes": [{"name": "monitor", **find_node(f.answers["nodes"],
+                                                                                         "monitor")}]},
+        "ament_python"),
+    "ament_cmake-__init__.py-when-the-last-python-node-goes": Dropped(
+        "ament_cmake", init_docstring, without("monitor"), "Python"),
+    **{f"{name}-interfaces-package-when-the-interfaces-go": Dropped(
+        name, interfaces_build_files, lambda f: {"interfaces": {}, "nodes": with_languages(f, f.answers["nodes"])},
+        "interfaces", prepare=interfaces_added) for name in ("ament_cmake", "catkin")},
+    **{f"{name}-tuned-config-of-a-removed-node": Dropped(name, tuned_config, without("driver"), "driver")
+       for name in FLAVORS},
+}
+
+
+@pytest.mark.parametrize("case", DROPPED)
+def test_an_edited_file_the_answers_no_longer_make_is_kept_and_named(project, case):
+    dropped = DROPPED[case]
+    flavor = Flavor(dropped.flavor)
+    destination = project(dropped.flavor)
+    if dropped.prepare:
+        dropped.prepare(destination, flavor)
+    edits = dropped.edit(destination, flavor)
+    commit_all(destination, "my edits")
+
+    result = run_update(destination, dropped.answers(flavor))
+
+    assert result.returncode != 0, f"the update exited 0 although it dropped files the user edited\n{result}"
+    kept = kept_of(result.output)
+    for path, lines in edits.items():
+        assert missing_block(destination / path, lines) is None, f"{path} lost the user's lines\n{result}"
+        assert path in kept, f"{path} is not named as kept\n{result}"
+        assert dropped.why in kept[path], f"the reason for keeping {path} does not say {dropped.why!r}: {kept[path]}"
+    assert not conflicted_files(destination), conflict_excerpts(destination)
+    assert broken_packages(destination) == [], result

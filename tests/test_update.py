@@ -25,7 +25,7 @@ if "support.template_repo" not in sys.modules:  # its asserts explain themselves
 from support.packages import dependency_names  # noqa: E402
 from support.template_repo import (  # noqa: E402
     FLAVORS, NEW_VERSION, OLD_VERSION, PACKAGE, Flavor, answers_of, append_after, commit_all, conflict_excerpts,
-    conflicted_files, find_node, generate_project, git, managed_lines, missing_block, replace_text, run_update,
+    conflicted_files, find_node, generate_project, git, kept_of, managed_lines, missing_block, replace_text, run_update,
     summary_of, tree_differences, unmanaged_lines, user_answers,
 )
 
@@ -327,12 +327,13 @@ def test_remove_nodes(project, case):
 
     nodes = [node for node in flavor.answers["nodes"] if node["name"] not in (edited, untouched)]
     result = run_update(destination, {"nodes": nodes})
-    assert_clean_update(result, destination)
 
-    # The edited user file is kept, said so, and still holds the user's line.
+    # The edited user file is kept, the update fails naming it, and it still holds the user's line.
+    assert result.returncode == 1, result
+    assert not conflicted_files(destination), conflict_excerpts(destination)
     edited_file = flavor.user_file(edited, languages[edited])
     assert (destination / edited_file).is_file(), f"the user's edited {edited_file} was deleted\n{result}"
-    assert f"KEPT {edited_file}" in result.stdout, result
+    assert f"node '{edited}'" in kept_of(result.output).get(edited_file, ""), result
     assert missing_block(destination / edited_file, kept_lines) is None
     # The untouched one is gone like the rest of both nodes.
     assert not (destination / flavor.user_file(untouched, languages[untouched])).exists(), result

@@ -38,6 +38,7 @@ from pathlib import Path
 
 import pytest
 import yaml
+from catkin_pkg.package import parse_package
 
 from .generation import (
     ANSWERS_FILE, FIXED_ANSWERS, ROOT, TEMPLATE_ITEMS, answers_of, git, snapshot_template, subprocess_env,
@@ -281,6 +282,88 @@ def tree_differences(left: Path, right: Path, ignore_answer_keys: tuple[str, ...
 def _without_keys(text: str, keys: tuple[str, ...]) -> str:
     return "".join(line for line in text.splitlines(keepends=True)
                    if not any(line.startswith(f"{key}:") for key in keys))
+
+
+def kept_of(output: str) -> dict[str, str]:
+    """The summary's `kept` items: path -> why."""
+    return _items(output, "  kept")
+
+
+def to_port_of(output: str) -> dict[str, str]:
+    """The summary's `to port` items: path -> what changed."""
+    return _items(output, "  to port")
+
+
+def _items(output: str, heading: str) -> dict[str, str]:
+    items: dict[str, str] = {}
+    inside, current = False, None
+    for line in output.splitlines():
+        if line.startswith(heading):
+            inside = True
+        elif inside and line.startswith("    ") and not line.startswith("      ") and ": " in line:
+            current, why = line.strip().split(": ", 1)
+            items[current] = why
+        elif inside and line.startswith("      ") and current:
+            items[current] += " " + line.strip()
+        else:
+            inside = False
+    return items
+
+
+IGNORE_MARKERS = ("COLCON_IGNORE", "CATKIN_IGNORE", "AMENT_IGNORE")
+
+
+def broken_packages(project: Path) -> list[str]:
+    """What stops colcon or catkin from reading a package of `project`, by reading its files.
+
+    package.xml must parse with catkin_pkg (duplicate dependencies included); the build
+    file its <build_type> names must exist and be sane: CMakeLists.txt with balanced
+    parentheses naming sources that exist, setup.py that parses with entry points whose
+    modules exist. Building for real is the ros and ros1 tiers' job.
+    """
+    problems = []
+    for xml in sorted(project.rglob("package.xml")):
+        folder = xml.parent
+        if ".git" in xml.relative_to(project).parts or any((folder / m).exists() for m in IGNORE_MARKERS):
+            continue
+        where = str(folder.relative_to(project))
+        try:
+            package = parse_package(str(xml))
+        except Exception as error:  # noqa: BLE001 - catkin_pkg raises several kinds
+            problems.append(f"{where}/package.xml does not parse: {error}")
+            continue
+        build_type = package.get_build_type()
+        build_file = folder / ("setup.py" if build_type == "ament_python" else "CMakeLists.txt")
+        if not build_file.is_file():
+            problems.append(f"{where}: {build_type} without {build_file.name}")
+        elif build_file.name == "CMakeLists.txt":
+            problems += [f"{where}/CMakeLists.txt: {p}" for p in _cmake_problems(build_file.read_text(), folder)]
+        else:
+            problems += [f"{where}/setup.py: {p}" for p in _setup_py_problems(build_file.read_text(), folder)]
+    return problems
+
+
+def _cmake_problems(text: str, folder: Path) -> list[str]:
+    code = re.sub(r'"(?:\\.|[^"\\])*"|#[^\n]*', "", text)
+    problems = [] if code.count("(") == code.count(")") else ["unbalanced parentheses"]
+    problems += [f"names {source}, which does not exist"
+                 for source in re.findall(r"\b((?:src|scripts|[a-z]\w*)/[\w/]+\.(?:cpp|py|msg|srv|action))\b", code)
+                 if not (folder / source).is_file()]
+    if any(marker in text for marker in CONFLICT_MARKERS):
+        problems.append("conflict markers")
+    return problems
+
+
+def _setup_py_problems(text: str, folder: Path) -> list[str]:
+    import ast
+
+    try:
+        ast.parse(text)
+    except SyntaxError as error:
+        return [f"does not parse: {error}"]
+    return [f"entry point {name} names {module}, which does not exist"
+            for name, module in re.findall(r"'(\w+) = ([\w.]+):\w+'", text)
+            if not (folder / (module.replace(".", "/") + ".py")).is_file()]
 
 
 # ─── User edits ───────────────────────────────────────────────────────────────
