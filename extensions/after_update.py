@@ -17,7 +17,7 @@ import yaml
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
-from rna import build_package  # noqa: E402 - the template's own package, next to this file
+from rna import Package, build_package  # noqa: E402 - the template's own package, next to this file
 from rna.update import config_merge, protect  # noqa: E402
 from rna.update.project import Project, Render, render  # noqa: E402
 from rna.update.summary import Report, changes, summary  # noqa: E402
@@ -25,10 +25,10 @@ from rna.update.summary import Report, changes, summary  # noqa: E402
 MARKERS = ("<<<<<<< before updating", ">>>>>>> after updating")
 
 
-def user_files(answers: dict, report: Report) -> set[str] | None:
-    """The files the answers make the user's (relative to the project folder), or None."""
+def package_of(answers: dict, report: Report) -> Package | None:
+    """The model of the answers, or None when this version cannot read them."""
     try:
-        return set(build_package(answers).user_files)
+        return build_package(answers)
     except ValueError as error:  # answers an older version accepted and this one does not
         report.problems.append(f"Your node files were not checked (the old answers do not read: {error}): "
                                "compare them with `git diff HEAD` before committing.")
@@ -59,10 +59,11 @@ def main(answers_file: str, project_root: Path | None = None, template: Path = H
     with tempfile.TemporaryDirectory(prefix="rna-update-") as scratch:
         old = Render(render(str(template), old_answers["_commit"], old_answers, Path(scratch, "old")))
         new = Render(render(str(template), new_answers["_commit"], new_answers, Path(scratch, "new")))
-        paths = [user_files(old_answers, report), user_files(new_answers, report)]
-        if None not in paths:
-            protect.keep_edited_files(project, old, new, {}, report)
-            protect.refresh_untouched_starters(project, old, new, paths[0] | paths[1], report)
+        packages = (package_of(old_answers, report), package_of(new_answers, report))
+        protect.keep_edited_files(project, old, new, packages, report)
+        if None not in packages:
+            user_files = set(packages[0].user_files) | set(packages[1].user_files)
+            protect.refresh_untouched_starters(project, old, new, user_files, report)
         config_merge.merge_config_files(project, old, new, report)
         report.conflicts = conflicts(project)
         before = snapshot(project, project.committed_files, committed=True)
