@@ -190,6 +190,63 @@ def test_an_update_ends_with_a_summary_instead_of_internal_command_lines(project
     assert all("['" not in line and "after_update.py" in line for line in task_lines), result
 
 
+# ─── Answers stored resolved ──────────────────────────────────────────────────
+# A node's language defaults from the build type; the answers file records it, so that
+# changing the build type (or the distro) never turns a Python node into a C++ one.
+
+
+def node_files(destination: Path) -> set[str]:
+    return {str(p.relative_to(destination)) for p in destination.rglob("*")
+            if p.suffix in (".py", ".cpp", ".hpp") and ".git" not in p.parts and "test" not in p.parts}
+
+
+@pytest.mark.parametrize("version", [NEW_VERSION, OLD_VERSION], ids=["resolved-answers", "answers-of-0.1.0"])
+def test_changing_the_build_type_keeps_each_nodes_language(project, version):
+    flavor = Flavor("ament_python")
+    destination = project("ament_python", version)
+    recorded = answers_of(destination)["nodes"]
+    if version == NEW_VERSION:
+        assert all(node.get("language") == "python" for node in recorded), recorded
+    kept = edit_user_file(destination, flavor, "driver")
+    commit_all(destination)
+    python_files = node_files(destination)
+
+    result = run_update(destination, {"build_type": "ament_cmake"}, vcs_ref=NEW_VERSION)
+    assert_clean_update(result, destination)
+
+    assert [node["language"] for node in answers_of(destination)["nodes"]] == ["python"] * 3
+    assert node_files(destination) == python_files, "a node changed language"
+    assert missing_block(destination / flavor.user_file("driver"), kept) is None
+    assert build_entries(Path(destination), Flavor("ament_cmake"), managed_only=True) == {
+        "python:driver", "python:monitor", "python:logger"}
+
+
+def test_nodes_given_without_a_language_keep_theirs(project):
+    """`--data nodes=...` written as the docs do, without `language`, changes no node's language."""
+    flavor = Flavor("ament_python")
+    destination = project("ament_python")
+    nodes = flavor.answers["nodes"] + [{"name": "planner", **PLANNER}]
+    result = run_update(destination, {"build_type": "ament_cmake", "nodes": nodes})
+    assert_clean_update(result, destination)
+    languages = {node["name"]: node["language"] for node in answers_of(destination)["nodes"]}
+    assert languages == {"driver": "python", "monitor": "python", "logger": "python", "planner": "cpp"}
+    assert (destination / "robot/src/planner.cpp").is_file() and (destination / "robot/robot/driver.py").is_file()
+
+
+def test_a_language_changed_on_purpose_keeps_the_edited_file(project):
+    flavor = Flavor("ament_cmake")
+    destination = project("ament_cmake")
+    kept = edit_user_file(destination, flavor, "monitor")
+    commit_all(destination)
+    nodes = flavor.answers["nodes"]
+    find_node(nodes, "monitor")["language"] = "cpp"
+    result = run_update(destination, {"nodes": nodes})
+    assert result.returncode == 1, result
+    assert missing_block(destination / flavor.user_file("monitor", "python"), kept) is None
+    assert "cpp now" in kept_of(result.output)[flavor.user_file("monitor", "python")]
+    assert (destination / flavor.user_file("monitor", "cpp")).is_file()
+
+
 # ─── Adding endpoints to existing nodes ───────────────────────────────────────
 
 
