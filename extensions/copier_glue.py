@@ -18,6 +18,7 @@ import sys
 from collections.abc import Mapping
 from pathlib import Path
 
+import yaml
 from copier.errors import UserMessageError
 from copier_template_extensions import ContextHook
 from jinja2 import pass_context
@@ -45,6 +46,7 @@ try:
     import rna.lab
     import rna.layout
     import rna.names
+    import rna.update.resolve
     import rna.wording
     import rna.workspace
 finally:
@@ -207,6 +209,7 @@ class RnaExtension(Extension):
             endopt=rna.dialects.lines.OPTIONAL_END)
         environment.filters.update(
             absolute_source=absolute_source,
+            resolved_answers=rna.update.resolve.resolved,
             dialect=rna.dialects.dialect,
             driver_docstring=rna.wording.driver_docstring,
             fit_cpp=functools.partial(rna.dialects.lines.fit, language="cpp"),
@@ -234,6 +237,9 @@ class PackageContext(ContextHook):
         if str(context.get("_copier_phase")) != "render":
             _check_given_answers(context)
             return
+        previous = _previous_answers(context)
+        if previous is not None:  # an update: nodes given without a language keep theirs
+            rna.update.resolve.keep_languages(context.get("nodes"), previous)
         answers = {key: context.get(key) for key in (*rna.answers.QUESTIONS, "copyright_year")}
         key = json.dumps([answers, str((context.get('_copier_conf') or {}).get('dst_path'))],
                          sort_keys=True, default=str)
@@ -244,6 +250,19 @@ class PackageContext(ContextHook):
                 raise UserMessageError(f"rna-template: {error}") from None
             _refuse_to_overwrite(_models[key], context)
         context["package"] = _models[key]
+
+
+def _previous_answers(context) -> dict | None:
+    """The answers being updated: the answers file already in the destination, if any."""
+    conf = context.get("_copier_conf") or {}
+    if conf.get("dst_path") is None or conf.get("answers_file") is None:
+        return None
+    path = Path(conf["dst_path"], conf["answers_file"])
+    try:
+        previous = yaml.safe_load(path.read_text()) if path.is_file() else None
+    except (OSError, yaml.YAMLError):
+        return None
+    return previous if isinstance(previous, dict) else None
 
 
 _checked: set[str] = set()

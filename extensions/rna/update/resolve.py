@@ -1,0 +1,81 @@
+"""Answers stored resolved: what a default made of one answer is written out, so it never moves.
+
+A node's language defaults from the build type (C++ in ament_cmake and catkin, Python in
+ament_python). Were only the answer given recorded, changing the build type or the
+distro later would re-read every node written without a language as the new default:
+Python nodes turned C++. So:
+
+- the answers file records every node with its language (`resolved()`);
+- during an update, a node given without a language keeps the one it had in the answers
+  being updated, so the answers files of versions that did not record it (0.1.0, 0.2.0)
+  and `--data nodes=...` written as the docs show mean what they meant
+  (`keep_languages()`); a new node gets the build type's default.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+from .. import distros
+
+
+def build_type_of(answers: Mapping) -> str:
+    """The build type the answers give (ROS 1 packages are catkin and do not record it)."""
+    if distros.generation(answers.get("ros_distro")) == 1:
+        return "catkin"
+    return answers.get("build_type") or "ament_python"
+
+
+def _name(node: object) -> object:
+    return node.get("name") if isinstance(node, Mapping) else node
+
+
+def languages(answers: Mapping) -> dict[str, str]:
+    """Each node's language: the one written, or its build type's default."""
+    nodes = answers.get("nodes")
+    if not isinstance(nodes, list):
+        return {}
+    default = distros.default_language(build_type_of(answers))
+    found = {}
+    for node in nodes:
+        language = node.get("language") if isinstance(node, Mapping) else None
+        found[str(_name(node))] = distros.LANGUAGES.get(str(language or default).lower(), str(language))
+    return found
+
+
+def resolved(answers: Mapping) -> dict:
+    """The answers to record: every node a mapping with its language written out."""
+    recorded = dict(answers)
+    nodes = recorded.get("nodes")
+    if isinstance(nodes, list):
+        written = languages(recorded)
+        recorded["nodes"] = [
+            {**node, "language": node.get("language") or written[str(node.get("name"))]}
+            if isinstance(node, Mapping) else {"name": node, "language": written[str(node)]} if isinstance(node, str)
+            else node
+            for node in nodes]
+    return recorded
+
+
+def keep_languages(nodes: object, previous: Mapping) -> list[str]:
+    """Give each node listed without a language the one it had in `previous`, in place.
+
+    Returns the names of the nodes that kept a language their new build type would not
+    have given them by default.
+    """
+    if not isinstance(nodes, list):
+        return []
+    before = languages(previous)
+    kept = []
+    for index, node in enumerate(nodes):
+        name = _name(node)
+        if not isinstance(name, str) or name not in before:
+            continue
+        if isinstance(node, str):
+            nodes[index] = {"name": node, "language": before[name]}
+        elif isinstance(node, dict) and not node.get("language"):
+            node["language"] = before[name]
+        else:
+            continue
+        kept.append(name)
+    return kept
