@@ -15,12 +15,14 @@ leave the user's line on the "before updating" side of the conflict.
 
 from __future__ import annotations
 
+import re
 import sys
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import pytest
+from catkin_pkg.package import parse_package
 
 if "support.template_repo" not in sys.modules:  # its asserts explain themselves too
     pytest.register_assert_rewrite("support.template_repo")
@@ -524,3 +526,120 @@ def test_an_edited_file_the_answers_no_longer_make_is_kept_and_named(project, ca
         assert dropped.why in kept[path], f"the reason for keeping {path} does not say {dropped.why!r}: {kept[path]}"
     assert not conflicted_files(destination), conflict_excerpts(destination)
     assert broken_packages(destination) == [], result
+
+
+# ─── Managed blocks and the user's own lines ──────────────────────────────────
+# A dependency the user declares below a block's END marker is the user's: when the
+# answers come to need it too, the block leaves it out (package.xml must still parse).
+
+PACKAGE_XML_END = "<!-- END rna-template: add your own dependencies below -->"
+
+
+def declarations(package_xml: Path, name: str) -> list[str]:
+    return [line.strip() for line in package_xml.read_text().splitlines()
+            if re.fullmatch(rf"\s*<(\w+)>{name}</\1>\s*", line)]
+
+
+@dataclass(frozen=True)
+class Declared:
+    flavor: str
+    lines: dict[Callable[[Flavor], str], tuple[str, list[str]]]  # file -> (anchor, the user's lines)
+    nodes: Callable[[Flavor, list[dict]], list[dict]]
+    package_xml: str = f"{PACKAGE}/package.xml"
+    interfaces: dict | None = None  # given with the change
+    prepare: Callable[[Path, Flavor], None] | None = None
+
+
+def add_scan(flavor: Flavor, nodes: list[dict]) -> list[dict]:
+    return add_to(("driver", "monitor"), "subscribers", "scan:sensor_msgs/msg/LaserScan")(flavor, nodes)
+
+
+def point_field(project: Path, flavor: Flavor) -> None:
+    interfaces_added(project, flavor)
+
+
+DECLARED = {
+    "ament_python-exec_depend": Declared(
+        "ament_python", {lambda f: f.package_xml: (PACKAGE_XML_END, ["  <exec_depend>sensor_msgs</exec_depend>"])},
+        add_scan),
+    "ament_cmake-depend-and-find_package": Declared(
+        "ament_cmake", {lambda f: f.package_xml: (PACKAGE_XML_END, ["  <depend>sensor_msgs</depend>"]),
+                        lambda f: f.build_file: ("# END rna-template: add your own find_package() calls below",
+                                                 ["find_package(sensor_msgs REQUIRED)"])},
+        add_scan),
+    "ament_cmake-exec_depend-only": Declared(
+        "ament_cmake", {lambda f: f.package_xml: (PACKAGE_XML_END, ["  <exec_depend>sensor_msgs</exec_depend>"])},
+        add_scan),
+    "catkin-depend": Declared(
+        "catkin", {lambda f: f.package_xml: (PACKAGE_XML_END, ["  <depend>sensor_msgs</depend>"])}, add_scan),
+    **{f"{name}-interfaces-package": Declared(
+        name, {lambda f: f"{PACKAGE}_interfaces/package.xml": (PACKAGE_XML_END, ["  <depend>geometry_msgs</depend>"])},
+        lambda f, nodes: with_languages(f, nodes), package_xml=f"{PACKAGE}_interfaces/package.xml",
+        interfaces={"messages": [{"name": "Target", "fields": ["float64 x", "geometry_msgs/Point p"]}]},
+        prepare=interfaces_added) for name in ("ament_cmake", "catkin")},
+}
+
+
+@pytest.mark.parametrize("case", DECLARED)
+def test_a_dependency_the_user_declared_is_never_declared_twice(project, case):
+    declared = DECLARED[case]
+    flavor = Flavor(declared.flavor)
+    destination = project(declared.flavor)
+    if declared.prepare:
+        declared.prepare(destination, flavor)
+    edits = Edits(destination)
+    for path, (anchor, lines) in declared.lines.items():
+        edits.after("the user's own dependency", path(flavor), anchor, "\n".join(lines))
+    edits.commit()
+    nodes = declared.nodes(flavor, flavor.answers["nodes"])
+    if declared.interfaces:
+        find_node(nodes, "driver")["publishers"] = ["target:Target"]
+
+    result = run_update(destination, {"nodes": nodes, **({"interfaces": declared.interfaces}
+                                                           if declared.interfaces else {})})
+
+    assert result.returncode == 0 and not conflicted_files(destination), f"{conflict_excerpts(destination)}{result}"
+    assert edits.problems() == []
+    assert broken_packages(destination) == [], result
+    package_xml = destination / declared.package_xml
+    name = "geometry_msgs" if declared.interfaces else "sensor_msgs"
+    found = declarations(package_xml, name)
+    assert found and all(tag.count("depend") == 2 for tag in found), package_xml.read_text()
+    tags = [re.match(r"<(\w+)>", line)[1] for line in found]
+    assert len(tags) == len(set(tags)) and not ("depend" in tags and len(tags) > 1), package_xml.read_text()
+    if flavor.name != "ament_python" and not declared.interfaces:
+        model = parse_package(str(package_xml))
+        assert name in {d.name for d in model.build_depends} & {d.name for d in model.exec_depends}
+    cmake = destination / flavor.build_file
+    if flavor.name == "ament_cmake" and not declared.interfaces:
+        assert cmake.read_text().count(f"find_package({name} REQUIRED)") == 1, cmake.read_text()
+
+
+# The user's own code includes (imports) a message package the answers used; the answers
+# stop using it: the update must say that the package leaves package.xml while the code uses it.
+
+USES_NAV_MSGS = {
+    "ament_python": ("import rclpy", "from nav_msgs.msg import Odometry\n"),
+    "ament_cmake": ("#include <cstddef>", '#include "nav_msgs/msg/odometry.hpp"'),
+    "catkin": ("#include <cstddef>", "#include <nav_msgs/Odometry.h>"),
+}
+
+
+@pytest.mark.parametrize("flavor_name", FLAVORS)
+def test_a_dependency_the_users_code_still_uses_is_not_dropped_silently(project, flavor_name):
+    flavor = Flavor(flavor_name)
+    destination = project(flavor_name)
+    anchor, line = USES_NAV_MSGS[flavor_name]
+    edits = Edits(destination)
+    edits.before("an include of the old message package", flavor.user_file("driver"), anchor, line)
+    edits.commit()
+    nodes = flavor.answers["nodes"]
+    find_node(nodes, "driver")["subscribers"] = ["odom:geometry_msgs/msg/PoseStamped"]
+
+    result = run_update(destination, {"nodes": nodes})
+
+    assert edits.problems() == []
+    still = "nav_msgs" in {d.name for d in (lambda p: p.build_depends + p.exec_depends)(
+        parse_package(str(destination / flavor.package_xml)))}
+    said = "nav_msgs" in result.output and flavor.user_file("driver") in result.output
+    assert still or (said and result.returncode != 0), f"nav_msgs was dropped without a word\n{result}"
