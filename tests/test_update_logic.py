@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from rna.update import config_merge, resolve
+from rna.update import blocks, config_merge, resolve
 
 ROS2_CONFIG = "/**:\n  ros__parameters:\n    # Gain\n    gain: {gain}\n\n    frame_id: {frame}\n\n"
 
@@ -37,3 +37,58 @@ def test_nodes_given_without_a_language_keep_the_one_they_had():
     assert resolve.keep_languages(nodes, previous) == ["driver", "monitor"]
     assert nodes == [{"name": "driver", "language": "python"}, {"name": "monitor", "language": "python"},
                      {"name": "planner"}, {"name": "x", "language": "cpp"}]
+
+
+PACKAGE_XML = """<?xml version="1.0"?>
+<package format="3">
+  <name>robot</name>
+  <!-- BEGIN rna-template: dependencies of the nodes -->
+  <depend>nav_msgs</depend>
+  <depend>sensor_msgs</depend>
+  <exec_depend>std_srvs</exec_depend>
+  <!-- END rna-template: add your own dependencies below -->
+{mine}
+</package>
+"""
+
+
+def test_a_block_leaves_out_what_the_users_own_lines_declare():
+    text, left_out = blocks.package_xml_without_duplicates(PACKAGE_XML.format(mine="  <depend>sensor_msgs</depend>"))
+    assert left_out == ["sensor_msgs"]
+    assert text.count("sensor_msgs") == 1 and blocks.package_xml_problems(text) == []
+    # only what the user's lines do not give stays in the block
+    text, _ = blocks.package_xml_without_duplicates(PACKAGE_XML.format(mine="  <exec_depend>nav_msgs</exec_depend>"))
+    assert "  <build_depend>nav_msgs</build_depend>\n  <build_export_depend>nav_msgs</build_export_depend>\n" in text
+    assert blocks.package_xml_problems(text) == []
+    text, left_out = blocks.package_xml_without_duplicates(PACKAGE_XML.format(mine="  <depend>std_srvs</depend>"))
+    assert left_out == ["std_srvs"] and "<exec_depend>std_srvs" not in text
+    # a commented-out line of the user's declares nothing
+    same = PACKAGE_XML.format(mine="  <!-- <depend>sensor_msgs</depend> -->")
+    assert blocks.package_xml_without_duplicates(same) == (same, [])
+
+
+def test_package_xml_problems_are_the_ones_catkin_pkg_raises():
+    assert blocks.package_xml_problems(PACKAGE_XML.format(mine="")) == []
+    assert blocks.package_xml_problems(PACKAGE_XML.format(mine="  <depend>nav_msgs</depend>")) == [
+        "nav_msgs is declared by <depend> and again by <depend>"]
+    assert blocks.package_xml_problems(PACKAGE_XML.format(mine="  <exec_depend>nav_msgs</exec_depend>")) == [
+        "nav_msgs is declared by <depend> and again by <exec_depend>"]
+    assert blocks.package_xml_problems(PACKAGE_XML.format(mine="  <exec_depend>std_srvs</exec_depend>")) == []
+    assert blocks.package_xml_problems("<package>")[0].startswith("it is not well-formed XML")
+
+
+def test_find_package_lines_the_user_wrote_leave_the_block():
+    text = ("# BEGIN rna-template: dependencies\nfind_package(rclcpp REQUIRED)\nfind_package(sensor_msgs REQUIRED)\n"
+            "# END rna-template: add your own find_package() calls below\nfind_package(sensor_msgs  REQUIRED)\n")
+    merged, left_out = blocks.cmake_without_duplicates(text)
+    assert merged.count("sensor_msgs") == 1 and "find_package(rclcpp REQUIRED)" in merged
+    assert left_out == ["find_package(sensor_msgs REQUIRED)"]
+
+
+def test_code_that_uses_a_package():
+    assert blocks.uses('#include "nav_msgs/msg/odometry.hpp"\n', "nav_msgs", ".cpp")
+    assert blocks.uses("#include <nav_msgs/Odometry.h>\n", "nav_msgs", ".h")
+    assert blocks.uses("from nav_msgs.msg import Odometry\n", "nav_msgs", ".py")
+    assert blocks.uses("import nav_msgs\n", "nav_msgs", ".py")
+    assert not blocks.uses("import nav_msgs_extra\n# from nav_msgs.msg import x\n", "nav_msgs", ".py")
+    assert not blocks.uses("// #include <nav_msgs/Odometry.h>\n", "nav_msgs", ".cpp")
