@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import pytest
+import yaml
 from catkin_pkg.package import parse_package
 
 if "support.template_repo" not in sys.modules:  # its asserts explain themselves too
@@ -187,8 +188,13 @@ def lived_in(project: Path, flavor: Flavor) -> Edits:
                        '<launch>\n  <include file="$(find-pkg-share robot)/launch/robot.launch.xml"/>\n'
                        '  <set_parameter name="use_sim_time" value="true"/>\n</launch>\n')
 
-    edits.replace("a tuned parameter", flavor.config_file("driver"), "gain: 1.0", "gain: 1.8")
+    edits.replace("a tuned parameter with a comment", flavor.config_file("driver"), "gain: 1.0",
+                  "gain: 1.8  # tuned on the real robot")
+    edits.before("a comment above a parameter", flavor.config_file("driver"), "frame_id: base_link",
+                 ("" if flavor.ros1 else "    ") + "# the odometry frame of the real robot")
     edits.replace("a tuned parameter", flavor.config_file("monitor"), "limit: 5", "limit: 9")
+    edits.after("a parameter of the user's own, commented", flavor.config_file("monitor"), "limit: 9",
+                ("" if flavor.ros1 else "    ") + "alarm_delay: 2.5  # mine: seconds before the alarm")
 
     if flavor.ros1:
         edits.after("an extra <node> after END", flavor.launch_file, "<!-- END rna-template",
@@ -643,3 +649,62 @@ def test_a_dependency_the_users_code_still_uses_is_not_dropped_silently(project,
         parse_package(str(destination / flavor.package_xml)))}
     said = "nav_msgs" in result.output and flavor.user_file("driver") in result.output
     assert still or (said and result.returncode != 0), f"nav_msgs was dropped without a word\n{result}"
+
+
+# ─── Config files keep the user's text ────────────────────────────────────────
+# Comments, order and layout of a tuned config file survive a changed default or a new
+# parameter, whatever --conflict says.
+
+def tuned_with_comments(project: Path, flavor: Flavor) -> Edits:
+    edits = Edits(project)
+    path, indent = flavor.config_file("driver"), "" if flavor.ros1 else "    "
+    edits.replace("a tuned value with a comment", path, "gain: 1.0", "gain: 1.8  # tuned on the real robot, March")
+    edits.before("a comment above a parameter", path, "frame_id: base_link", f"{indent}# the frame of the lidar")
+    edits.replace("blank lines removed and a parameter moved up", path,
+                  f"\n\n{indent}max_speed: 0.5\n", f"\n{indent}max_speed: 0.5\n")
+    edits.after("a parameter of the user's own", path, "max_speed: 0.5", f"{indent}stop_distance: 0.3  # mine")
+    edits.commit()
+    return edits
+
+
+def config_change(flavor: Flavor) -> list[dict]:
+    nodes = set_default("driver", "max_speed", "0.9")(flavor, flavor.answers["nodes"])
+    return add_to(("driver",), "parameters", "timeout:double=0.5")(flavor, nodes)
+
+
+@pytest.mark.parametrize("flavor_name", FLAVORS)
+def test_a_config_merge_keeps_the_users_text_whatever_the_conflict_mode(project, flavor_name):
+    flavor = Flavor(flavor_name)
+    outcomes = {}
+    for mode in ("inline", "rej"):
+        destination = project(flavor_name, name=mode)
+        edits = tuned_with_comments(destination, flavor)
+        result = run_update(destination, {"nodes": config_change(flavor)}, extra_args=("--conflict", mode))
+        assert result.returncode == 0 and not conflicted_files(destination), (
+            f"--conflict {mode}: {conflict_excerpts(destination)}\n{result}")
+        assert edits.problems() == [], f"--conflict {mode}\n{result}"
+        text = (destination / flavor.config_file("driver")).read_text()
+        values = yaml.safe_load(text)
+        values = values if flavor.ros1 else values["/**"]["ros__parameters"]
+        assert values == {"gain": 1.8, "frame_id": "base_link", "max_speed": 0.9, "stop_distance": 0.3,
+                          "timeout": 0.5}, f"--conflict {mode}:\n{text}"
+        outcomes[mode] = text
+    assert outcomes["inline"] == outcomes["rej"]
+
+
+@pytest.mark.parametrize("flavor_name", FLAVORS)
+def test_a_real_config_conflict_is_loud_whatever_the_conflict_mode(project, flavor_name):
+    """The user tuned gain and its default changed too: the user decides, in both modes."""
+    flavor = Flavor(flavor_name)
+    for mode in ("inline", "rej"):
+        destination = project(flavor_name, name=mode)
+        tuned_with_comments(destination, flavor)
+        nodes = set_gain_default(flavor, config_change(flavor))
+        result = run_update(destination, {"nodes": nodes}, extra_args=("--conflict", mode))
+        path = flavor.config_file("driver")
+        assert result.returncode == 1 and path in str(result), f"--conflict {mode}\n{result}"
+        conflicts = conflicted_files(destination)
+        assert (path if mode == "inline" else f"{path}.rej") in conflicts, f"--conflict {mode}: {conflicts}"
+        text = (destination / path).read_text()
+        assert "max_speed: 0.9" in text and "timeout: 0.5" in text, f"--conflict {mode}: the rest is merged\n{text}"
+        assert "# the frame of the lidar" in text and "stop_distance: 0.3  # mine" in text, text
