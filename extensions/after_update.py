@@ -64,7 +64,7 @@ def main(answers_file: str, project_root: Path | None = None, template: Path = H
         if None not in packages:
             user_files = set(packages[0].user_files) | set(packages[1].user_files)
             protect.refresh_untouched_starters(project, old, new, user_files, report)
-        config_merge.merge_config_files(project, old, new, report)
+        config_merge.merge_config_files(project, old, new, packages, report)
         blocks.leave_out_user_declarations(project, new, report)
         blocks.dropped_but_used(project, old, report)
         blocks.unreadable_package_xml(project, report)

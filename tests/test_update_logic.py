@@ -12,13 +12,38 @@ def test_config_files_merge_by_parameter():
     mine = ROS2_CONFIG.format(gain=1.8, frame="odom") + "    mine: true\n"
     new = ROS2_CONFIG.format(gain=1.0, frame="map")
     merged = config_merge.merge(old, mine, new)
-    assert config_merge.parameters(merged) == {"gain": 1.8, "frame_id": "map", "mine": True}
-    assert "    # Gain\n    gain: 1.8\n" in merged
-    assert config_merge.merge(old, mine, ROS2_CONFIG.format(gain=2.0, frame="odom")) is None  # tuned and changed
-    assert config_merge.merge(old, mine, ROS2_CONFIG.format(gain=1.8, frame="odom")) is not None  # same value
+    assert config_merge.parameters(merged.text) == {"gain": 1.8, "frame_id": "map", "mine": True}
+    assert "    # Gain\n    gain: 1.8\n" in merged.text and not merged.conflicts
+    conflict = config_merge.merge(old, mine, ROS2_CONFIG.format(gain=2.0, frame="odom"))
+    assert conflict.conflicts == {"gain": (1.8, 2.0)} and "gain: 1.8" in conflict.text
+    assert not config_merge.merge(old, mine, ROS2_CONFIG.format(gain=1.8, frame="odom")).conflicts  # same value
     ros1 = config_merge.merge("gain: 1.0\n", "gain: 3.0\n", "gain: 1.0\n\nrate: 5\n")
-    assert config_merge.parameters(ros1) == {"gain": 3.0, "rate": 5}
+    assert config_merge.parameters(ros1.text) == {"gain": 3.0, "rate": 5}
     assert config_merge.merge("a: [", "a: 1", "a: 2") is None
+
+
+HEADER = "# Parameters of the driver node.\n"
+
+
+def test_a_config_merge_keeps_the_users_comments_and_layout():
+    old = HEADER + "# Proportional gain\ngain: 1.0\n\nframe_id: odom\n\nmax_speed: 0.5\n\nold: 1\n"
+    mine = (HEADER + "# Proportional gain\ngain: 1.8  # tuned, March\n# the lidar's frame\nframe_id: odom\n"
+            "max_speed: 0.5\nstop: 0.3  # mine\n\nold: 1\n")
+    new = HEADER + "# Proportional gain (P)\ngain: 1.0\n\nframe_id: odom\n\nmax_speed: 0.9\n\n# New\nnew: 2\n"
+    merged = config_merge.merge(old, mine, new, ({"gain": "Proportional gain"},
+                                                 {"gain": "Proportional gain (P)", "new": "New"}))
+    assert merged.text == (HEADER + "# Proportional gain (P)\ngain: 1.8  # tuned, March\n# the lidar's frame\n"
+                           "frame_id: odom\nmax_speed: 0.9\n# New\nnew: 2\nstop: 0.3  # mine\n")
+
+
+def test_a_config_merge_reads_values_written_over_several_lines():
+    old = "/**:\n  ros__parameters:\n    gains: [1.0, 2.0]\n\n    rate: 5\n"
+    mine = "/**:\n  ros__parameters:\n    gains:\n      - 1.0\n      - 2.5\n    rate: 5  # Hz\n"
+    new = "/**:\n  ros__parameters:\n    gains: [1.0, 2.0]\n\n    rate: 10\n"
+    merged = config_merge.merge(old, mine, new)
+    assert merged.text == "/**:\n  ros__parameters:\n    gains:\n      - 1.0\n      - 2.5\n    rate: 10  # Hz\n"
+    assert config_merge.merge(old, mine, "/**:\n  ros__parameters: {}\n").text == (
+        "/**:\n  ros__parameters:\n    gains:\n      - 1.0\n      - 2.5\n")
 
 
 def test_the_answers_file_records_each_nodes_language():

@@ -294,14 +294,19 @@ def to_port_of(output: str) -> dict[str, str]:
     return _items(output, "  to port")
 
 
+def conflicts_of(output: str) -> list[str]:
+    """The files the summary lists as conflicts."""
+    return list(_items(output, "  conflicts"))
+
+
 def _items(output: str, heading: str) -> dict[str, str]:
     items: dict[str, str] = {}
     inside, current = False, None
     for line in output.splitlines():
         if line.startswith(heading):
             inside = True
-        elif inside and line.startswith("    ") and not line.startswith("      ") and ": " in line:
-            current, why = line.strip().split(": ", 1)
+        elif inside and line.startswith("    ") and not line.startswith("      "):
+            current, _, why = line.strip().partition(": ")
             items[current] = why
         elif inside and line.startswith("      ") and current:
             items[current] += " " + line.strip()
