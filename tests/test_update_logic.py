@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from rna.update import blocks, config_merge, resolve
+from rna.update import blocks, config_merge, merge, resolve
 
 ROS2_CONFIG = "/**:\n  ros__parameters:\n    # Gain\n    gain: {gain}\n\n    frame_id: {frame}\n\n"
 
@@ -117,3 +117,25 @@ def test_code_that_uses_a_package():
     assert blocks.uses("import nav_msgs\n", "nav_msgs", ".py")
     assert not blocks.uses("import nav_msgs_extra\n# from nav_msgs.msg import x\n", "nav_msgs", ".py")
     assert not blocks.uses("// #include <nav_msgs/Odometry.h>\n", "nav_msgs", ".cpp")
+
+
+def test_changes_that_only_touch_each_other_both_land():
+    base = "intro\noverride it in your class.\n\n## Build\n"
+    ours = "intro\noverride it in your class. Ask the lab first.\n\n## Build\n"
+    theirs = "intro\noverride it in your class.\n\nSee the docs.\n\n## Build\n"
+    assert merge.merge3(ours, base, theirs) == (
+        "intro\noverride it in your class. Ask the lab first.\n\nSee the docs.\n\n## Build\n", False)
+    # a library added inside a list the template grows, next to the line it changes
+    base = "libs(\n  a\n  b)\n"
+    ours = "libs(\n  a\n  b\n  mine)\n"
+    theirs = "libs(\n  a\n  new\n  b)\n"
+    assert merge.merge3(ours, base, theirs) == ("libs(\n  a\n  new\n  b\n  mine)\n", False)
+
+
+def test_real_conflicts_stay_marked():
+    text, conflicted = merge.merge3("x\nmine\ny\n", "x\nold\ny\n", "x\nnew\ny\n")
+    assert conflicted and text == "x\n<<<<<<< before updating\nmine\n=======\nnew\n>>>>>>> after updating\ny\n"
+    # both sides added lines at the same place: the order is the user's call
+    assert merge.merge3("a\nmine\nb\n", "a\nb\n", "a\nnew\nb\n")[1]
+    # the user edited a line the template deletes
+    assert merge.merge3("a\nmine\nb\n", "a\nold\nb\n", "a\nb\n")[1]

@@ -1,0 +1,91 @@
+"""A three-way line merge that also settles changes that only touch each other.
+
+Copier merges the user's edits into the new version with git, which reports a conflict
+whenever the two sides change neighbouring lines: a README line the user reworded just
+before a paragraph the template adds, a library the user added to a list the template
+grows. Where one side kept a run of lines as they were and only added lines before or
+after it, while the other side changed that run, both changes fit: this merge takes
+them both. Everything else stays a conflict, marked as Copier marks them.
+"""
+
+from __future__ import annotations
+
+import re
+import subprocess
+import tempfile
+from pathlib import Path
+
+from .project import Project, Render
+from .summary import Report
+
+OURS, BASE, THEIRS, END = "<<<<<<< before updating", "||||||| last update", "=======", ">>>>>>> after updating"
+
+
+def _settle(ours: list[str], base: list[str], theirs: list[str]) -> list[str] | None:
+    """Both sides' changes of one conflicting region, when they fit together; else None."""
+    if ours == base:
+        return theirs
+    if theirs == base or ours == theirs:
+        return ours
+    if not base:
+        return None  # both added lines at one place: which order is right is the user's call
+    for side, other in ((theirs, ours), (ours, theirs)):
+        if side[:len(base)] == base:  # `side` kept the run and added lines after it
+            return other + side[len(base):]
+        if side[-len(base):] == base:  # `side` kept the run and added lines before it
+            return side[:-len(base)] + other
+    return None
+
+
+def merge3(ours: str, base: str, theirs: str) -> tuple[str, bool]:
+    """(the merged text, whether conflicts are left) of the user's text, the old render and the new one."""
+    with tempfile.TemporaryDirectory(prefix="rna-merge-") as scratch:
+        paths = []
+        for name, text in (("ours", ours), ("base", base), ("theirs", theirs)):
+            path = Path(scratch, name)
+            path.write_text(text)
+            paths.append(str(path))
+        result = subprocess.run(["git", "merge-file", "-p", "--diff3", "-L", OURS[8:], "-L", BASE[8:],
+                                 "-L", END[8:], *paths], capture_output=True, text=True, check=False)
+    if result.returncode < 0 or result.returncode > 127:
+        raise RuntimeError(f"git merge-file failed: {result.stderr}")
+    merged, conflicted, region, side = [], False, {}, None
+    for line in result.stdout.split("\n"):
+        if line == OURS:
+            region, side = {"ours": [], "base": [], "theirs": []}, "ours"
+        elif side and line == BASE:
+            side = "base"
+        elif side and line == THEIRS:
+            side = "theirs"
+        elif side and line == END:
+            settled = _settle(region["ours"], region["base"], region["theirs"])
+            if settled is None:
+                conflicted = True
+                settled = [OURS, *region["ours"], THEIRS, *region["theirs"], END]
+            merged += settled
+            side = None
+        elif side:
+            region[side].append(line)
+        else:
+            merged.append(line)
+    return "\n".join(merged), conflicted
+
+
+def settle_conflicts(project: Project, old: Render, new: Render, report: Report, skip: re.Pattern) -> None:
+    """Files Copier left in conflict (markers or .rej) merged again here, kept when no conflict is left."""
+    for path in sorted(project.current_files()):
+        target = path[:-4] if path.endswith(".rej") else path
+        text = project.text(target)
+        if skip.search(target) or text is None or not (path.endswith(".rej") or OURS in text):
+            continue
+        ours, base, theirs = project.committed(target), old.text(target), new.text(target)
+        if None in (ours, base, theirs):
+            continue
+        merged, conflicted = merge3(ours, base, theirs)
+        if conflicted:
+            continue
+        project.write(target, merged)
+        if (project.root / f"{target}.rej").exists():
+            (project.root / f"{target}.rej").unlink()
+        project.resolve_in_index(target)
+        report.merged.add(target)
