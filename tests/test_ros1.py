@@ -10,11 +10,12 @@ from __future__ import annotations
 
 import contextlib
 import os
+import random
 from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
-from support import existing_packages
+from support import existing_packages, interrupts
 from support import ros1 as ros1_support
 from support.generation import VARIANTS, add_node, example, generate
 from support.processes import NodeProcess, assert_clean_exit, started
@@ -179,6 +180,33 @@ def test_parameters_come_from_the_command_line(catkin_ws):
                 node.wait_for("label: from_cli")
                 node.wait_for(r"verbose: (false|False)")
                 assert_clean_exit(node, node.interrupt())
+
+
+SIGINT_SEED = 8
+SIGINT_BATCHES = 5  # each starts two of every rospy node of `pairs`: 60 SIGINTs in all
+
+
+def test_rospy_nodes_stop_cleanly_on_sigint_at_any_moment(catkin_ws):
+    """Talker, listener, service and actionlib servers and clients, stopped at random moments."""
+    rng = random.Random(SIGINT_SEED)
+    python_nodes = [node["name"] for node in PAIRS_PACKAGE["nodes"] if node["language"] == "python"]
+    failures, total = [], 0
+    for batch in range(SIGINT_BATCHES):
+        logs = catkin_ws.logs / f"sigint_{batch}"
+        with catkin_ws.network(f"sigint_{batch}") as (prefix, env):
+            runs = []
+            for copy in range(2):
+                for node in python_nodes:
+                    name = f"{node}_{copy}"
+                    process = catkin_ws.node(prefix, {**env, "ROS_LOG_DIR": str(logs / name)}, "pairs", node,
+                                             f"__name:={name}", log=logs / f"{name}.log")
+                    runs.append(interrupts.Run(node, process, logs / name, interrupts.draw_delay(rng)))
+            with started(*(run.process for run in runs)):
+                failures += interrupts.interrupt_all(runs)
+        total += len(runs)
+    assert total >= 60
+    if failures:
+        pytest.fail(interrupts.report(failures, total, SIGINT_SEED), pytrace=False)
 
 
 def test_generated_packages_pass_catkin_lint(catkin_ws):

@@ -8,6 +8,7 @@ run are Python nodes, in ament_python and ament_cmake (ament_cmake_python) packa
 from __future__ import annotations
 
 import json
+import random
 import re
 import subprocess
 import xml.etree.ElementTree as ET
@@ -15,7 +16,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
-from support import existing_packages
+from support import existing_packages, interrupts
 from support import ros2 as ros2_support
 from support.generation import add_node, example, examples, generate
 from support.processes import NodeProcess, assert_clean_exit, started
@@ -67,6 +68,23 @@ TRACKER_SAME = example("tracker", package_name="tracker_same", build_type="ament
                        nodes=[{**node, "language": "python"} for node in TRACKER["nodes"]])
 TRACKER_SAME["nodes"][1]["subscribers"] = ["target:Target"]
 
+# Every kind of Python node, with fast timers so that a SIGINT often lands mid-callback.
+STOPPABLE = {
+    "package_name": "stoppable",
+    "build_type": "ament_python",
+    "nodes": [
+        {"name": "talker", "publishers": ["chatter:std_msgs/msg/String"], "timers": [0.05],
+         "parameters": ["rate=20.0", "label:string=plain"]},
+        {"name": "listener", "subscribers": ["chatter:std_msgs/msg/String"]},
+        {"name": "server", "service_servers": ["reset:std_srvs/srv/Trigger"],
+         "action_servers": ["fibonacci:test_msgs/action/Fibonacci"]},
+        {"name": "client", "service_clients": ["reset:std_srvs/srv/Trigger"],
+         "action_clients": ["fibonacci:test_msgs/action/Fibonacci"], "timers": [0.05]},
+        {"name": "beacon", "lifecycle": True, "publishers": ["chatter:std_msgs/msg/String"],
+         "subscribers": ["chatter:std_msgs/msg/String"], "timers": [0.05]},
+    ],
+}
+
 
 @pytest.fixture(scope="session")
 def ros2():
@@ -110,6 +128,7 @@ def workspace(ros2, template_dir, tmp_path_factory) -> Workspace:
     generate(template_dir, path / "src" / "robot_beacons", CMAKE_PYTHON)
     generate(template_dir, path / "src" / "tracker", TRACKER)
     generate(template_dir, path / "src" / "tracker_same", TRACKER_SAME)
+    generate(template_dir, path / "src" / "stoppable", STOPPABLE)
     # Nodes added to packages written by hand (an ament_python and an ament_cmake one).
     add_node(template_dir, existing_packages.ament_python(path / "src" / "hand_robot"),
              {"node_name": "listener", "node_subscribers": "chatter:std_msgs/msg/String"})
@@ -240,6 +259,37 @@ def test_ament_cmake_python_node_runs(workspace):
     with started(workspace.node("robot_beacons", "counter")) as (counter,):
         counter.wait_for(r"Publishing: \d+")
         stop_all(counter)
+
+
+SIGINT_SEED = 8
+SIGINT_BATCHES = 10  # each starts two of every node kind: 100 SIGINTs in all
+
+
+def test_python_nodes_stop_cleanly_on_sigint_at_any_moment(workspace):
+    """Every node kind, stopped during start-up, mid-callback, mid-goal or while its peers stop."""
+    rng = random.Random(SIGINT_SEED)
+    failures, total = [], 0
+    for batch in range(SIGINT_BATCHES):
+        runs, drivers = [], []
+        for copy in range(2):
+            for node in STOPPABLE["nodes"]:
+                name = f"{node['name']}_{batch}_{copy}"
+                log_dir = workspace.logs / "sigint" / name
+                program = workspace.path / "install" / "stoppable" / "lib" / "stoppable" / node["name"]
+                process = NodeProcess([str(program), "--ros-args", "-r", f"__node:={name}"],
+                                      env={**workspace.env, "ROS_LOG_DIR": str(log_dir)},
+                                      log_path=log_dir.with_suffix(".log"))
+                runs.append(interrupts.Run(node["name"], process, log_dir, interrupts.draw_delay(rng)))
+                if node.get("lifecycle"):  # driven to active from another process, as early as it can be
+                    drivers.append(NodeProcess([str(workspace.ros2.python), str(PROBE), "lifecycle", name,
+                                                "configure", "activate"],
+                                               env=workspace.env, log_path=log_dir.with_suffix(".driver.log")))
+        with started(*(run.process for run in runs), *drivers):
+            failures += interrupts.interrupt_all(runs)
+        total += len(runs)
+    assert total >= 100
+    if failures:
+        pytest.fail(interrupts.report(failures, total, SIGINT_SEED), pytrace=False)
 
 
 # --------------------------------------------------------------------------- linters

@@ -1,0 +1,91 @@
+"""Ctrl-C at random moments: the stress test of clean shutdown shared by the ROS tiers.
+
+Each run is one node process with a ROS log directory of its own. Its clock starts
+when the client library opens its log file there, which rclpy.init() and
+rospy.init_node() do first thing in the node's main(); before that the interpreter is
+still importing modules, where Ctrl-C ends any Python program with a KeyboardInterrupt
+traceback and no node code has run yet to handle it. The SIGINT then comes a seeded
+random delay later: during start-up (creating the node, its publishers and parameters),
+mid-callback, mid-goal, or while another run it talks to is shutting down.
+"""
+
+from __future__ import annotations
+
+import random
+import re
+import signal
+import subprocess
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+from .processes import NodeProcess
+
+# What a clean stop never prints: a Python traceback or an exception's name.
+UNCLEAN_OUTPUT = re.compile(r"Traceback|Error")
+START_UP = 0.3  # seconds after start still spent creating the node, its endpoints and parameters
+LATEST = 1.5  # seconds: by then the runs are exchanging messages, calls and goals
+
+
+def draw_delay(rng: random.Random) -> float:
+    """Half the runs stopped during start-up, half at any time up to LATEST."""
+    return rng.uniform(0.0, START_UP if rng.random() < 0.5 else LATEST)
+
+
+@dataclass
+class Run:
+    kind: str
+    process: NodeProcess
+    log_dir: Path  # the node's ROS_LOG_DIR, empty until its client library starts
+    delay: float
+    started: float | None = None  # monotonic time the log file appeared
+    interrupted: bool = False
+
+    @property
+    def label(self) -> str:
+        return f"{self.kind} ({self.process.log_path.stem}), SIGINT {self.delay:.2f} s after start"
+
+
+def interrupt_all(runs: list[Run], timeout: float = 30.0) -> list[tuple[Run, str]]:
+    """Send each run SIGINT `delay` seconds after its start; return the runs that did not end cleanly.
+
+    A clean end is exit code 0 with nothing in the output that UNCLEAN_OUTPUT matches.
+    """
+    pending = list(runs)
+    deadline = time.monotonic() + timeout
+    while pending:
+        now = time.monotonic()
+        for run in list(pending):
+            if run.started is None and run.log_dir.is_dir() and any(run.log_dir.iterdir()):
+                run.started = now
+            if run.started is not None and now >= run.started + run.delay:
+                run.process.popen.send_signal(signal.SIGINT)
+                run.interrupted = True
+                pending.remove(run)
+            elif run.process.popen.poll() is not None or now > deadline:
+                pending.remove(run)  # ended by itself or never started: reported below
+        time.sleep(0.005)
+    return [(run, problem) for run in runs if (problem := _problem(run, timeout))]
+
+
+def _problem(run: Run, timeout: float) -> str | None:
+    try:
+        code = run.process.popen.wait(timeout)
+    except subprocess.TimeoutExpired:
+        run.process.kill()
+        return f"still ran {timeout} s after SIGINT" if run.interrupted else "never started ROS"
+    if not run.interrupted:
+        return f"ended with exit code {code} before its SIGINT"
+    if code != 0:
+        return f"exited with code {code}"
+    unclean = UNCLEAN_OUTPUT.search(run.process.output)
+    return f"exited with code 0 but printed {unclean.group()!r}" if unclean else None
+
+
+def report(failures: list[tuple[Run, str]], total: int, seed: int) -> str:
+    """The failing runs, one per line, then the whole output of the first one."""
+    lines = [f"{len(failures)} of {total} nodes stopped with SIGINT did not end cleanly (seed {seed}):"]
+    lines += [f"  {run.label}: {problem}" for run, problem in failures]
+    first = failures[0][0]
+    lines += ["", f"output of {first.label}:", first.process.output]
+    return "\n".join(lines)
