@@ -83,7 +83,7 @@ ROS1_CPP = {
 }
 
 ROS1_PYTHON = {
-    "node": Needs(("rospy",), ("rospy",), ("rospy",)),
+    "node": Needs(("rospy",), ("rospy",), ("rospy", "signal")),  # signal: main() holds Ctrl-C in start-up
     "actions": Needs(("actionlib", "actionlib_msgs")),
     "action_servers": Needs(base=("actionlib:SimpleActionServer",)),
     "action_clients": Needs(base=("actionlib:SimpleActionClient",), user=("actionlib_msgs.msg:GoalStatus",)),
