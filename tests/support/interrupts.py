@@ -23,13 +23,12 @@ from .processes import NodeProcess
 
 # What a clean stop never prints: a Python traceback or an exception's name.
 UNCLEAN_OUTPUT = re.compile(r"Traceback|Error")
-START_UP = 0.3  # seconds after start still spent creating the node, its endpoints and parameters
 LATEST = 1.5  # seconds: by then the runs are exchanging messages, calls and goals
 
 
 def draw_delay(rng: random.Random) -> float:
-    """Half the runs stopped during start-up, half at any time up to LATEST."""
-    return rng.uniform(0.0, START_UP if rng.random() < 0.5 else LATEST)
+    """Anywhere from at once (start-up: the node, its parameters and endpoints) to LATEST."""
+    return rng.uniform(0.0, LATEST)
 
 
 @dataclass
