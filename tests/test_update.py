@@ -445,9 +445,18 @@ def test_add_an_interface(project, current_template, tmp_path, case):
     nodes = flavor.answers["nodes"]
     find_node(nodes, "driver")["publishers"] = [*find_node(nodes, "driver").get("publishers", []), "target:Target"]
     find_node(nodes, "monitor")["service_servers"] = ["set_target:SetTarget"]
+    monitor_file = flavor.user_file("monitor")
+    imports_old_type = "std_srvs" in (destination / monitor_file).read_text()
     result = run_update(destination, {"interfaces": NEW_INTERFACES, "interfaces_location": location,
                                       "nodes": nodes})
-    assert_clean_update(result, destination)
+    if imports_old_type:
+        # The user's monitor still uses the Trigger service it no longer serves: the update
+        # must say so and fail, since std_srvs leaves the package's dependencies.
+        assert result.returncode == 1, result
+        assert f"your {monitor_file} still imports it" in " ".join(result.stdout.split()), result
+        assert not conflicted_files(destination), conflict_excerpts(destination)
+    else:
+        assert_clean_update(result, destination)
 
     home = PACKAGE if location == "package" else f"{PACKAGE}_interfaces"
     assert definition_lines(destination / home / "msg" / "Target.msg") == ["float64 x", "float64 y"]
