@@ -244,16 +244,7 @@ TRACKER = {"package_name": "tracker", "ros_distro": "noetic",
            "interfaces": ROS1_INTERFACES, "nodes": _ros1_tracker_nodes()}
 TRACKER_SAME = {**TRACKER, "package_name": "tracker_same", "interfaces_location": "package"}
 
-LAUNCHED_PACKAGE = {
-    "package_name": "bringup",
-    "ros_distro": "noetic",
-    "description": "Talker in C++ and listener in Python, started by one launch file",
-    "nodes": [
-        {"name": "talker", "language": "cpp", "publishers": ["chatter:std_msgs/msg/String"], "timers": [0.2],
-         "parameters": [{"name": "rate", "default": 1.5, "description": "Work rate in Hz"}]},
-        {"name": "listener", "language": "python", "subscribers": ["chatter:std_msgs/msg/String"]},
-    ],
-}
+LAUNCHED_PACKAGE = example("bringup_ros1")
 
 
 def test_launch_file_starts_every_node_with_its_config(catkin_ws):

@@ -26,39 +26,10 @@ pytestmark = pytest.mark.ros
 
 PROBE = Path(__file__).parent / "support" / "ros2_probe.py"
 
-SERVICES = {
-    "package_name": "robot_services",
-    "build_type": "ament_python",
-    "nodes": [
-        {"name": "server",
-         "service_servers": ["reset:std_srvs/srv/Trigger", "enable:std_srvs/srv/SetBool"],
-         "action_servers": ["fibonacci:test_msgs/action/Fibonacci"],
-         "parameters": [
-             {"name": "rate", "type": "double", "default": 1.5, "description": "Work rate in Hz",
-              "range": [0.0, 10.0]},
-             "label:string=plain",
-             "limits:int[]=[1, 2, 3]",
-             "verbose=false",
-         ]},
-        {"name": "client",
-         "service_clients": ["reset:std_srvs/srv/Trigger", "enable:std_srvs/srv/SetBool"],
-         "action_clients": ["fibonacci:test_msgs/action/Fibonacci"],
-         "timers": [0.3]},
-    ],
-}
+SERVICES = example("services_and_actions")
 
 # An ament_cmake package whose Python nodes install through ament_cmake_python.
-CMAKE_PYTHON = {
-    "package_name": "robot_beacons",
-    "build_type": "ament_cmake",
-    "nodes": [
-        {"name": "beacon", "language": "python", "lifecycle": True,
-         "publishers": ["chatter:std_msgs/msg/String"], "timers": [0.2]},
-        {"name": "counter", "language": "python",
-         "publishers": ["count:std_msgs/msg/Int64"], "subscribers": ["count_echo:std_msgs/msg/Int64"],
-         "timers": ["tick:0.2"]},
-    ],
-}
+CMAKE_PYTHON = example("cmake_python_nodes")
 
 
 # Custom interfaces: a separate tracker_interfaces package, and the same ones built by
@@ -69,21 +40,7 @@ TRACKER_SAME = example("tracker", package_name="tracker_same", build_type="ament
 TRACKER_SAME["nodes"][1]["subscribers"] = ["target:Target"]
 
 # Every kind of Python node, with fast timers so that a SIGINT often lands mid-callback.
-STOPPABLE = {
-    "package_name": "stoppable",
-    "build_type": "ament_python",
-    "nodes": [
-        {"name": "talker", "publishers": ["chatter:std_msgs/msg/String"], "timers": [0.05],
-         "parameters": ["rate=20.0", "label:string=plain"]},
-        {"name": "listener", "subscribers": ["chatter:std_msgs/msg/String"]},
-        {"name": "server", "service_servers": ["reset:std_srvs/srv/Trigger"],
-         "action_servers": ["fibonacci:test_msgs/action/Fibonacci"]},
-        {"name": "client", "service_clients": ["reset:std_srvs/srv/Trigger"],
-         "action_clients": ["fibonacci:test_msgs/action/Fibonacci"], "timers": [0.05]},
-        {"name": "beacon", "lifecycle": True, "publishers": ["chatter:std_msgs/msg/String"],
-         "subscribers": ["chatter:std_msgs/msg/String"], "timers": [0.05]},
-    ],
-}
+STOPPABLE = example("every_python_node")
 
 
 @pytest.fixture(scope="session")

@@ -41,7 +41,7 @@ import yaml
 from catkin_pkg.package import parse_package
 
 from .generation import (
-    ANSWERS_FILE, FIXED_ANSWERS, ROOT, TEMPLATE_ITEMS, answers_of, git, snapshot_template, subprocess_env,
+    ANSWERS_FILE, FIXED_ANSWERS, ROOT, TEMPLATE_ITEMS, answers_of, example, git, snapshot_template, subprocess_env,
 )
 from .packages import rna
 from .releases import ReleaseError, release_commit
@@ -473,38 +473,23 @@ def unmanaged_lines(text: str) -> list[str]:
 # Three flavours of one package `robot`, each with three nodes: `driver` and `monitor`
 # (the nodes whose files users edit) and `logger` (the "other" node).
 
-DRIVER = {
-    "publishers": ["cmd_vel:geometry_msgs/msg/Twist"],
-    "subscribers": ["odom:nav_msgs/msg/Odometry"],
-    "timers": ["control_loop:0.1"],
-    "parameters": [
-        {"name": "gain", "type": "double", "default": 1.0, "description": "Proportional gain"},
-        "frame_id:string=base_link",
-        "max_speed:double=0.5",
-    ],
-}
-MONITOR = {
-    "subscribers": ["cmd_vel:geometry_msgs/msg/Twist"],
-    "service_servers": ["reset:std_srvs/srv/Trigger"],
-    "parameters": ["limit:int=5"],
-}
-LOGGER = {
-    "subscribers": ["/diagnostics:diagnostic_msgs/msg/DiagnosticArray"],
-    "parameters": ["verbose=true"],
-}
+# The same nodes in each flavour; ament_cmake and catkin choose each node's language.
+FLAVOR_TARGETS = {"ament_python": {"build_type": "ament_python"}, "ament_cmake": {"build_type": "ament_cmake"},
+                  "catkin": {"ros_distro": "noetic"}}
+FLAVOR_LANGUAGES = {"ament_python": {},
+                    "ament_cmake": {"driver": "cpp", "monitor": "python", "logger": "cpp"},
+                    "catkin": {"driver": "cpp", "monitor": "python", "logger": "python"}}
 
-BASE_ANSWERS = {
-    "ament_python": {"package_name": "robot", "build_type": "ament_python", "nodes": [
-        {"name": "driver", **DRIVER}, {"name": "monitor", **MONITOR}, {"name": "logger", **LOGGER}]},
-    "ament_cmake": {"package_name": "robot", "build_type": "ament_cmake", "nodes": [
-        {"name": "driver", "language": "cpp", **DRIVER},
-        {"name": "monitor", "language": "python", **MONITOR},
-        {"name": "logger", "language": "cpp", **LOGGER}]},
-    "catkin": {"package_name": "robot", "ros_distro": "noetic", "nodes": [
-        {"name": "driver", "language": "cpp", **DRIVER},
-        {"name": "monitor", "language": "python", **MONITOR},
-        {"name": "logger", "language": "python", **LOGGER}]},
-}
+
+def _base_answers(flavor: str) -> dict:
+    grown = example("robot_grown")
+    languages = FLAVOR_LANGUAGES[flavor]
+    nodes = [{"name": node["name"], **({"language": languages[node["name"]]} if languages else {}),
+              **{key: value for key, value in node.items() if key != "name"}} for node in grown["nodes"]]
+    return {"package_name": grown["package_name"], **FLAVOR_TARGETS[flavor], "nodes": nodes}
+
+
+BASE_ANSWERS = {flavor: _base_answers(flavor) for flavor in FLAVOR_TARGETS}
 FLAVORS = tuple(BASE_ANSWERS)
 PACKAGE = "robot"
 
