@@ -1,0 +1,38 @@
+"""tests/tools/benchmark.py runs end to end in its quickest mode (no timing is asserted)."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+TOOLS = Path(__file__).resolve().parent / "tools"
+
+
+def test_a_case_named_alone_brings_the_case_it_is_compared_with():
+    # Imported here, not at collection: it imports support.template_repo, which the
+    # update tests load as a pytest plugin first (so that pytest rewrites its asserts).
+    sys.path.insert(0, str(TOOLS))
+    import benchmark
+
+    assert benchmark.selected(["nodes_50"]) == {"nodes_50", "nodes_1"}
+    assert benchmark.selected(["update_20_catkin"]) == {"update_20_catkin", "copy_20_catkin"}
+    assert benchmark.selected(["default"]) == {"default", "floor"}
+    assert benchmark.selected(None) == {name for names in benchmark.CASE_GROUPS.values() for name in names}
+
+
+def test_quick_mode_measures_the_default_package_against_the_floor(tmp_path):
+    output = tmp_path / "figures.json"
+    result = subprocess.run([sys.executable, str(TOOLS / "benchmark.py"), "--quick", "--json", str(output)],
+                            capture_output=True, text=True, timeout=120, check=False)
+    assert result.returncode == 0, result.stdout + result.stderr
+    figures = json.loads(output.read_text())
+    assert set(figures["cases"]) == {"floor", "default"}
+    for case in figures["cases"].values():
+        (sample,) = case["samples"]
+        assert sample["wall"] > 0 and sample["cpu"] > 0
+    (row,) = figures["comparisons"]
+    assert (row["case"], row["reference"], row["goal"]) == ("default", "floor", 1.15)
+    assert row["met"] is (row["ratio"] <= 1.15)
+    assert "default package / one-file template (floor)" in result.stdout
