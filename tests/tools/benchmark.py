@@ -23,7 +23,7 @@ run, no warm-up):
   update    `copier update` adding a node to a 20-node ament_cmake package vs copying it
   catkin    the same for a 20-node catkin (noetic) package
 
---profile adds where the time goes for the default package and the update cases
+--profile adds where the time goes for the default package, 1 and 50 nodes and the updates
 (tests/tools/profiling.py). No test asserts on these figures.
 """
 
@@ -370,20 +370,26 @@ def machine() -> dict:
             "jinja2": importlib.metadata.version("jinja2")}
 
 
+def ratio(comparison: Comparison, cases: dict[str, Case], measure: str) -> float:
+    """The ratio of the two cases' medians of `measure` ("wall" or "cpu"), each over its floor if asked."""
+    value = cases[comparison.case].median(measure) / cases[comparison.reference].median(measure)
+    if comparison.floors:
+        value /= cases[comparison.floors[0]].median(measure) / cases[comparison.floors[1]].median(measure)
+    return value
+
+
 def comparisons(cases: dict[str, Case]) -> list[dict]:
     rows = []
     for comparison in COMPARISONS:
         needed = [comparison.case, comparison.reference, *(comparison.floors or ())]
         if not all(name in cases and cases[name].samples for name in needed):
             continue
-        case, reference = cases[comparison.case], cases[comparison.reference]
-        ratio = case.median("wall") / reference.median("wall")
-        if comparison.floors:
-            ratio /= cases[comparison.floors[0]].median("wall") / cases[comparison.floors[1]].median("wall")
-        rows.append({"label": comparison.label, "case": case.name, "reference": reference.name,
-                     "case_wall": case.median("wall"), "reference_wall": reference.median("wall"), "ratio": ratio,
-                     "goal": comparison.goal,
-                     "met": None if comparison.goal is None else ratio <= comparison.goal})
+        wall = ratio(comparison, cases, "wall")
+        rows.append({"label": comparison.label, "case": comparison.case, "reference": comparison.reference,
+                     "case_wall": cases[comparison.case].median("wall"),
+                     "reference_wall": cases[comparison.reference].median("wall"),
+                     "ratio": wall, "cpu_ratio": ratio(comparison, cases, "cpu"), "goal": comparison.goal,
+                     "met": None if comparison.goal is None else wall <= comparison.goal})
     return rows
 
 
@@ -402,13 +408,14 @@ def print_tables(cases: list[Case], rows: list[dict], runs: int, warmup: int) ->
             print(f"| {case.name + ': ' + case.label:<66} | {case.median('wall'):6.3f} | "
                   f"{low:7.3f}..{high:<8.3f} | {case.median('cpu'):5.2f} | {rss(case.median('rss')):>12} |")
     if rows:
-        print(f"\n| {'ratio of medians (wall)':<68} | case s | reference s | ratio  | goal    | met |")
-        print(f"| {'-' * 68} | -----: | ----------: | -----: | ------- | --- |")
+        print(f"\n| {'ratio of medians (wall time; CPU time beside it)':<68} | case s | reference s | ratio  | "
+              "CPU ratio | goal    | met |")
+        print(f"| {'-' * 68} | -----: | ----------: | -----: | --------: | ------- | --- |")
         for row in rows:
             goal = f"<= {row['goal']:.2f}" if row["goal"] is not None else ""
             met = "" if row["met"] is None else ("yes" if row["met"] else "no")
             print(f"| {row['label']:<68} | {row['case_wall']:6.3f} | {row['reference_wall']:11.3f} | "
-                  f"{row['ratio']:5.2f}x | {goal:<7} | {met:<3} |")
+                  f"{row['ratio']:5.2f}x | {row['cpu_ratio']:8.2f}x | {goal:<7} | {met:<3} |")
 
 
 def parse_arguments(argv: list[str] | None = None) -> argparse.Namespace:
@@ -422,7 +429,8 @@ def parse_arguments(argv: list[str] | None = None) -> argparse.Namespace:
     parser.add_argument("--json", type=Path, help="also write the figures to this JSON file")
     parser.add_argument("--template", type=Path, default=ROOT, help="the template's working tree (default: here)")
     parser.add_argument("--profile", action="store_true",
-                        help="also profile the default package and the update cases (tests/tools/profiling.py)")
+                        help="then profile the default package, 1 and 50 nodes and the updates "
+                             "(tests/tools/profiling.py)")
     arguments = parser.parse_args(argv)
     if arguments.quick:
         arguments.runs, arguments.warmup, arguments.only = 1, 0, arguments.only or ["default"]
@@ -443,6 +451,9 @@ def main(argv: list[str] | None = None) -> int:
     groups = {group for group, members in CASE_GROUPS.items() if not names.isdisjoint(members)}
     started = datetime.datetime.now().astimezone()
     load_before = os.getloadavg()
+    if load_before[0] > (os.cpu_count() or 1) / 2:
+        print(f"benchmark: load average {load_before[0]:.1f} on {os.cpu_count()} cores: other work competes, "
+              "so the figures will spread; the ratios of medians suffer least", file=sys.stderr)
     with tempfile.TemporaryDirectory(prefix="rna-bench-") as scratch:
         bench = Bench(Path(scratch), arguments.template.resolve(), groups)
         if bench.peer_error:

@@ -18,13 +18,14 @@ import sys
 import tempfile
 from pathlib import Path
 
-PROFILED = ("floor", "default", "update_20", "update_20_catkin")
+PROFILED = ("floor", "default", "nodes_1", "nodes_50", "update_20", "update_20_catkin")
 HOOKS = Path(__file__).resolve().with_name("profile_hooks")
 RUNS = 3
+LIBRARIES = "import: Copier, its libraries and Python's"
 
 CATEGORIES = (  # (category, does a phase name belong to it)
     ("start-up: interpreter and imports of Copier and its libraries",
-     lambda p: p.startswith("interpreter") or (p.startswith("import: ") and "template extensions" not in p)),
+     lambda p: p.startswith(("interpreter", LIBRARIES)) or ": import: " in p),
     ("clone and template metadata (git clone, describe, ls-files, copier.yml)",
      lambda p: p.startswith(("clone", "git: clone", "template ", "git: template", "read copier.yml",
                              "remove the clone"))),
@@ -36,6 +37,13 @@ CATEGORIES = (  # (category, does a phase name belong to it)
     ("update: Copier's own diff and apply (git)", lambda p: p.startswith(("update:", "git: update"))),
     ("other Copier work (CLI, answers file, bookkeeping)", lambda p: True),
 )
+
+
+def _phase_name(phase: str) -> str:
+    """The phase as reported: imports of Python's and Copier's libraries are one phase."""
+    if phase.startswith("import: ") and phase != "import: template extensions":
+        return LIBRARIES
+    return phase
 
 
 def category(phase: str) -> str:
@@ -61,8 +69,9 @@ def _phases_of_run(wall: float, records: list[dict]) -> tuple[dict[str, float], 
         for phase, (seconds, count) in record["phases"].items():
             if phase.startswith("process: "):
                 continue  # split below into the child's phases and its start-up
-            phases[prefix + phase] = phases.get(prefix + phase, 0.0) + seconds
-            calls[prefix + phase] = calls.get(prefix + phase, 0) + count
+            name = prefix + _phase_name(phase)
+            phases[name] = phases.get(name, 0.0) + seconds
+            calls[name] = calls.get(name, 0) + count
             named += seconds
         children = [r for r in records if r["ppid"] == record["pid"]]
         waited = sum(seconds for phase, (seconds, _) in record["phases"].items() if phase.startswith("process: "))
@@ -142,11 +151,11 @@ def profile_case(case, env: dict[str, str], runs: int = RUNS) -> dict:
 
 
 def _table(title: str, rows: dict[str, float], wall: float, reference: dict[str, float] | None,
-           calls: dict[str, int] | None = None, smallest: float = 0.0) -> None:
+           reference_name: str = "", calls: dict[str, int] | None = None, smallest: float = 0.0) -> None:
     columns = ["calls"] if calls is not None else []
-    columns += ["s", "share"] + (["floor s", "above floor"] if reference is not None else [])
+    columns += ["s", "share"] + ([f"{reference_name} s", f"more than {reference_name}"] if reference else [])
     print(f"\n| {title:<78} | " + " | ".join(columns) + " |")
-    print(f"| {'-' * 78} | " + " | ".join("-" * (len(c) - 1) + ":" for c in columns) + " |")
+    print(f"| {'-' * 78} | " + " | ".join("-" * max(len(c) - 1, 3) + ":" for c in columns) + " |")
     names = set(rows) | set(reference or {})
     for name in sorted(names, key=lambda n: -max(rows.get(n, 0.0), (reference or {}).get(n, 0.0))):
         seconds = rows.get(name, 0.0)
@@ -161,11 +170,12 @@ def _table(title: str, rows: dict[str, float], wall: float, reference: dict[str,
 
 def print_profile(result: dict, reference: dict | None = None) -> None:
     wall = result["wall"]
-    versus = f"; the floor: {reference['wall']:.3f} s" if reference else ""
+    name = reference["case"] if reference else ""
+    versus = f"; {name}: {reference['wall']:.3f} s" if reference else ""
     print(f"\n### {result['case']}: {result['label']} (median of {result['runs']} profiled runs: {wall:.3f} s"
           f"{versus})")
-    _table("category", result["categories"], wall, reference and reference["categories"])
-    _table("phase (exclusive wall time, >= 2 ms)", result["phases"], wall, reference and reference["phases"],
+    _table("category", result["categories"], wall, reference and reference["categories"], name)
+    _table("phase (exclusive wall time, >= 2 ms)", result["phases"], wall, reference and reference["phases"], name,
            result["calls"], smallest=0.002)
     print(f"\nThe template's own functions under cProfile (run of {result['cprofile_wall']:.3f} s; "
           "cProfile slows Python code, so shares are indicative):\n")
@@ -176,7 +186,7 @@ def print_profile(result: dict, reference: dict | None = None) -> None:
               f"{row['share']:5.1%} |")
 
 
-REFERENCE_OF = {"default": "floor"}  # a case profiled beside the one it is compared with
+REFERENCE_OF = {"default": "floor", "nodes_50": "nodes_1"}  # a case profiled beside its reference
 
 
 def profile_cases(cases, env: dict[str, str]) -> list[dict]:
