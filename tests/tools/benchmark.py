@@ -53,9 +53,9 @@ TESTS = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(TESTS))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from conftest import FIXED_ANSWERS, ROOT  # noqa: E402
+from support.generation import FIXED_ANSWERS, GIT_IDENTITY, ROOT  # noqa: E402
 from support.ros2 import default_cache_root  # noqa: E402
-from support.template_repo import GIT_IDENTITY, NEW_VERSION, generate_project, git  # noqa: E402
+from support.template_repo import NEW_VERSION, generate_project, git  # noqa: E402
 
 PEER = "ros2-pkg-create==1.3.0"
 PEER_VENV = "bench-ros2-pkg-create"
