@@ -195,6 +195,7 @@ class RnaExtension(Extension):
 
     def __init__(self, environment):
         super().__init__(environment)
+        _compile_each_string_once(environment)
         environment.globals.update(
             answer_error=answer_error, answers_file_name=answers_file_name, base_files=base_files,
             builds_interfaces=rna.distros.BUILDS_INTERFACES, languages=rna.distros.languages,
@@ -225,6 +226,26 @@ class RnaExtension(Extension):
             with_article=rna.wording.with_article,
             yaml_value=rna.configs.yaml_literal,
         )
+
+
+def _compile_each_string_once(environment) -> None:
+    """Keep what `from_string` compiled: Copier compiles the same strings hundreds of times a
+    run (the answers file name once per file, each question's `when`), Jinja caches only files.
+    A kept template is preprocessed again all the same: Copier's yield tag resets its state
+    there, and checks that state after rendering each file."""
+    compile_string = environment.from_string
+    compiled = {}
+
+    def from_string(source, globals=None, template_class=None):
+        if globals is not None or template_class is not None or not isinstance(source, str):
+            return compile_string(source, globals, template_class)
+        if source not in compiled:
+            compiled[source] = compile_string(source)
+        else:
+            environment.preprocess(source)
+        return compiled[source]
+
+    environment.from_string = from_string
 
 
 _models: dict[str, object] = {}
@@ -259,7 +280,17 @@ def _previous_answers(context) -> dict | None:
         return None
     path = Path(conf["dst_path"], conf["answers_file"])
     try:
-        previous = yaml.safe_load(path.read_text()) if path.is_file() else None
+        stat = path.stat()
+    except OSError:
+        return None
+    return _answers_file(str(path), stat.st_mtime_ns, stat.st_size)
+
+
+@functools.lru_cache(maxsize=8)
+def _answers_file(path: str, _mtime_ns: int, _size: int) -> dict | None:
+    """An answers file's content, read once per version of the file (the hook runs per file)."""
+    try:
+        previous = yaml.safe_load(Path(path).read_text())
     except (OSError, yaml.YAMLError):
         return None
     return previous if isinstance(previous, dict) else None
