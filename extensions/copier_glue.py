@@ -85,15 +85,12 @@ def default_nodes(context) -> str:
 
 @pass_context
 def found_interfaces(context, kind: str | None = None) -> str:
-    """A help suffix listing the interfaces already on disk around the destination."""
+    """A help suffix: the interfaces already on disk around the destination, on lines of their own."""
     destination = (context.get("_copier_conf") or {}).get("dst_path")
     if destination is None:
         return ""
     found = [name for name in _found(str(destination)) if kind is None or f"/{kind}/" in name]
-    if not found:
-        return ""
-    shown = ", ".join(found[:12]) + (f" and {len(found) - 12} more" if len(found) > 12 else "")
-    return f" (found in your workspace: {shown})"
+    return "".join("\n" + line for line in rna.wording.found_lines(found))
 
 
 @functools.cache

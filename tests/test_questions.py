@@ -161,7 +161,7 @@ def test_interfaces_in_the_workspace_are_offered(template_dir, tmp_path):
         answer(child, "describe the package's nodes", DOWN)
         answer(child, "Node name", "")
         child.expect("Topics it publishes")
-        child.expect(r"found in your workspace: nav_interfaces/msg/Goal")
+        child.expect(r"Found in your workspace: nav_interfaces/msg/Goal")
         child.send("goal:nav_interfaces/msg/Goal\r")
         for prompt in ("subscribes to", "Services it offers", "Services it calls", "Actions it executes",
                        "Actions it sends", "Timers", "Parameters", "One sentence"):

@@ -20,6 +20,8 @@ sys.path.insert(0, str(ROOT / "extensions"))
 from rna import lab, schema  # noqa: E402 - the template's own package
 
 _JINJA = re.compile(r"\{\{.*?\}\}|\{%.*?%\}", re.S)
+# A help's link to a page of this site, shown as its address.
+_DOCS_URL = re.compile(r"\{\{\s*docs_url\('([^']*)'\)\s*\}\}")
 
 
 def on_config(config):
@@ -81,7 +83,8 @@ def questions_table() -> str:
     for name, question in questions.items():
         if name.startswith("_") or not isinstance(question, dict):
             continue
-        help_text = _cell(_JINJA.sub("…", question.get("help", "")))
+        help_text = _DOCS_URL.sub(lambda match: f"<{lab.docs_url(match[1])}>", question.get("help", ""))
+        help_text = _cell(_JINJA.sub("…", help_text))
         rule = _cell(_words(rules[name])) if name in rules else ""
         rows.append(f"| `{name}` | {question.get('type', 'str')} | {rule} | {help_text} |")
     return "\n".join(rows)

@@ -1,4 +1,4 @@
-"""English for comments, docstrings, logs and the README: what a node does, in a sentence."""
+"""English for comments, docstrings, logs, the README and the prompts: what a node does, in a sentence."""
 
 from __future__ import annotations
 
@@ -11,6 +11,18 @@ def english_list(items: Iterable[str]) -> str:
     """['a', 'b', 'c'] -> 'a, b and c'."""
     items = list(items)
     return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
+
+
+def found_lines(names: list[str], width: int = 72, shown: int = 12) -> list[str]:
+    """'Found in your workspace: a, b ... and 3 more', wrapped at `width` for a prompt's help.
+
+    Names are never split (they hold no spaces); later lines are indented by two.
+    """
+    if not names:
+        return []
+    text = ", ".join(names[:shown]) + (f" and {len(names) - shown} more" if len(names) > shown else "")
+    return textwrap.wrap("Found in your workspace: " + text, width, subsequent_indent="  ",
+                         break_long_words=False, break_on_hyphens=False)
 
 
 def with_article(word: str) -> str:
