@@ -2,17 +2,24 @@
 at most 79 columns wide (an 80x24 terminal wraps nothing), and help links to the docs site.
 
 Copier hands each question to questionary as one message: the rendered help, verbatim,
-after the question mark (an emoji two columns wide and a space). These tests take the
-messages from that hand-over, with the prompts answered by their defaults, so they see
-exactly the text a person would, without a terminal.
+after the question mark (an emoji two columns wide and a space). Most tests take the
+messages from that hand-over, with the prompts answered by their defaults: the text a
+person would see, without a terminal. The last one drives `copier copy` in a pseudo-
+terminal of 80x24 (pexpect) drawn by a terminal emulator (pyte), and finds each of those
+lines whole on the screen.
 """
 
 from __future__ import annotations
 
+import os
 import re
+import sys
+from pathlib import Path
 
 import copier
 import copier._main
+import pexpect
+import pyte
 import pytest
 import yaml
 from rna import lab, wording
@@ -128,3 +135,65 @@ def test_found_lines_wrap_whole_names():
     assert lines[1:3] == ["  some_interfaces/msg/Type00,", "  some_interfaces/msg/Type01,"]
     assert lines[-1] == "  some_interfaces/msg/Type11 and 3 more"
     assert wording.found_lines([]) == []
+
+
+# ----------------------------------------------------------------------------- at an 80x24 terminal
+
+DOWN = "\x1b[B"
+COPIER = str(Path(sys.executable).with_name("copier"))
+# The prompts of a first copy in order, with the keys that answer them; ament_cmake asks the language.
+BEFORE_THE_NODES = [("package_name", ""), ("maintainer", ""), ("maintainer_email", ""), ("license", ""),
+                    ("copyright_holder", ""), ("ros_distro", ""), ("build_type", DOWN)]
+ONE_NODE = [("node_setup", DOWN), ("node_name", ""), ("node_language", ""), ("node_publishers", ""),
+            ("node_subscribers", ""), ("node_service_servers", ""), ("node_service_clients", ""),
+            ("node_action_servers", ""), ("node_action_clients", ""), ("node_timers", ""),
+            ("node_parameters", ""), ("description", "")]
+# A YAML answer ends with Esc then Enter.
+AS_YAML = [("node_setup", DOWN + DOWN), ("interfaces", "\x1b"), ("nodes", "\x1b"), ("description", "")]
+
+
+class Terminal:
+    """An 80x24 terminal (pyte) that `copier copy` draws on through a pseudo-terminal (pexpect)."""
+
+    def __init__(self, args: list[str], log: Path):
+        self.screen = pyte.Screen(80, 24)
+        self.stream = pyte.Stream(self.screen)
+        self.log = log.open("w")
+        env = {**os.environ, "TERM": "xterm", "PROMPT_TOOLKIT_NO_CPR": "1"}
+        self.child = pexpect.spawn(COPIER, args, env=env, encoding="utf-8", timeout=30, dimensions=(24, 80))
+        self.child.logfile_read = self
+
+    def write(self, data: str) -> None:
+        self.log.write(data)
+        self.stream.feed(data)
+
+    def flush(self) -> None:
+        self.log.flush()
+
+    def rows_at(self, lines: list[str]) -> list[str]:
+        """The screen's rows once a prompt's help `lines` (without the question mark) are drawn."""
+        self.child.expect_exact(lines[0][:30])
+        if len(lines) > 1:
+            self.child.expect_exact(lines[-1].strip()[-30:])
+        return [row.rstrip() for row in self.screen.display]
+
+
+@pytest.mark.parametrize("path", [ONE_NODE, AS_YAML], ids=["one node", "as yaml"])
+def test_each_prompt_keeps_its_lines_whole_at_80_columns(template_dir, tmp_path, monkeypatch, path):
+    """Every help line Copier hands over is a whole row of the screen: nothing wrapped."""
+    destination = workspace(tmp_path)
+    expected = shown_prompts(template_dir, destination, monkeypatch, build_type="ament_cmake",
+                             node_setup="one" if path is ONE_NODE else "list")
+    terminal = Terminal(["copy", "--trust", "--vcs-ref=HEAD", str(template_dir), str(destination)],
+                        tmp_path / "terminal.log")
+    try:
+        for name, keys in BEFORE_THE_NODES + path:
+            lines = [line.rstrip() for line in expected[name] if line.strip()]
+            rows = terminal.rows_at([lines[0].split(" ", 1)[1], *lines[1:]])
+            assert [line for line in lines if line not in rows] == [], (name, rows)
+            terminal.child.send(keys + "\r")
+        terminal.child.expect(pexpect.EOF, timeout=60)
+    finally:
+        terminal.child.close(force=True)
+        terminal.log.close()
+    assert terminal.child.exitstatus == 0, (tmp_path / "terminal.log").read_text()
