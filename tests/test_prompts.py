@@ -27,12 +27,14 @@ from support.generation import ROOT
 from wcwidth import wcswidth
 
 WIDTH = 79
+LONGEST_NAME = "warehouse_fleet_navigation_and_docking1"
 QUESTIONS = {name: question for name, question in yaml.safe_load((ROOT / "copier.yml").read_text()).items()
              if not name.startswith("_")}
 
 
 def shown_prompts(template_dir, destination, monkeypatch, **given) -> dict[str, list[str]]:
-    """The lines each question shows at its prompt, for a copy answered by the defaults and `given`."""
+    """The lines each question shows at its prompt, for a copy answered by the defaults and `given`:
+    the help after the question mark, then each choice after the pointer's three columns."""
     shown = {}
 
     def prompt(questions, answers):
@@ -42,6 +44,7 @@ def shown_prompts(template_dir, destination, monkeypatch, **given) -> dict[str, 
         if not question["when"](answers):  # questionary skips it: the default stands
             return answers
         shown[name] = f"{question['qmark']} {question['message']}".splitlines()
+        shown[name] += [f"   {choice.title}" for choice in question.get("choices", [])]
         return {name: question["filter"](given[name])} if name in given else answers
 
     monkeypatch.setattr(copier._main, "unsafe_prompt", prompt)
@@ -74,8 +77,9 @@ def prompts(template_dir, tmp_path_factory):
     with pytest.MonkeyPatch.context() as monkeypatch:
         destination = workspace(tmp_path_factory.mktemp("prompts"))
         one = shown_prompts(template_dir, destination, monkeypatch, build_type="ament_cmake", node_setup="one")
+        # The longest package name REP 144 allows, for the choices that show it.
         listed = shown_prompts(template_dir, destination, monkeypatch, build_type="ament_cmake", node_setup="list",
-                               interfaces="messages: [{name: Target, fields: [float64 x]}]")
+                               package_name=LONGEST_NAME, interfaces="messages: [{name: Target, fields: [float64 x]}]")
     return {**one, **listed}
 
 
@@ -85,6 +89,8 @@ def test_every_question_that_can_be_asked_is_seen(prompts):
 
 
 def test_every_prompt_line_fits_an_80_column_terminal(prompts):
+    assert "   a separate package, warehouse_fleet_navigation_and_docking1_interfaces" in prompts[
+        "interfaces_location"]
     too_wide = {name: line for name, lines in prompts.items() for line in lines if wcswidth(line) > WIDTH}
     assert not too_wide
 
@@ -189,7 +195,7 @@ def test_each_prompt_keeps_its_lines_whole_at_80_columns(template_dir, tmp_path,
     try:
         for name, keys in BEFORE_THE_NODES + path:
             lines = [line.rstrip() for line in expected[name] if line.strip()]
-            rows = terminal.rows_at([lines[0].split(" ", 1)[1], *lines[1:]])
+            rows = [row.replace(" » ", "   ", 1) for row in terminal.rows_at([lines[0].split(" ", 1)[1], *lines[1:]])]
             assert [line for line in lines if line not in rows] == [], (name, rows)
             terminal.child.send(keys + "\r")
         terminal.child.expect(pexpect.EOF, timeout=60)
