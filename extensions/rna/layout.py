@@ -28,8 +28,8 @@ LAUNCH_FILES = {2: "launch/{package}.launch.xml", 1: "launch/{package}.launch"}
 BASE_SUFFIX = "_base"
 
 # Files of a whole package, which a node added to an existing package never writes.
-PACKAGE_FILES = ("README.md", "LICENSE", "package.xml", "CMakeLists.txt", "setup.py", "setup.cfg", "resource",
-                 "test", "launch")
+PACKAGE_FILES = (".gitignore", "README.md", "LICENSE", "package.xml", "CMakeLists.txt", "setup.py", "setup.cfg",
+                 "resource", "test", "launch")
 
 
 def user_file(package: str, name: str, ros: int, language: str) -> str:
