@@ -43,6 +43,7 @@ try:
     import rna.distros
     import rna.dialects.lines
     import rna.dialects.python
+    import rna.dialog
     import rna.lab
     import rna.layout
     import rna.names
@@ -81,6 +82,65 @@ def default_description(context) -> str:
 def default_nodes(context) -> str:
     """The `nodes` default: the node the quick questions describe, or the demo."""
     return _answers(context).default_nodes
+
+
+_dialogs: dict[str, list] = {}  # the dialog's result, per destination and starting nodes
+
+
+def _interactive(context) -> bool:
+    conf = context.get("_copier_conf") or {}
+    return not conf.get("defaults") and sys.stdin.isatty() and sys.stdout.isatty()
+
+
+def _dialog_wanted(context) -> bool:
+    return context.get("node_setup") == "dialog" or context.get("edit_nodes") is True
+
+
+def _dialog_start(context) -> tuple[str, list]:
+    """The cache key and the nodes the dialog starts from: the answers updated, or the demo."""
+    previous = _previous_answers(context) if context.get("edit_nodes") is True else None
+    start = previous.get("nodes") if previous and isinstance(previous.get("nodes"), list) else None
+    start = rna.update.resolve.resolved({**previous, "nodes": start})["nodes"] if start else rna.answers.DEMO_NODES
+    destination = str((context.get("_copier_conf") or {}).get("dst_path"))
+    return json.dumps([destination, start], sort_keys=True, default=str), start
+
+
+@pass_context
+def nodes_dialog(context) -> str:
+    """The `nodes` default when they are edited step by step: the dialog's result, as YAML.
+
+    It asks once per run (Copier renders a default more than once) and only at a terminal:
+    with --defaults the nodes it starts from stand.
+    """
+    key, start = _dialog_start(context)
+    if key not in _dialogs:
+        if not _interactive(context):
+            return yaml.safe_dump(start, sort_keys=False)
+        answers = _answers(context)
+        rules = rna.dialog.Rules(context.get("package_name") or "pkg", rna.update.resolve.build_type_of(context),
+                                 answers.types)
+        destination = (context.get("_copier_conf") or {}).get("dst_path")
+        found = _found(str(destination)) if destination is not None else ()
+        own = {}
+        for (kind, name) in answers.types.own:
+            own.setdefault(kind, []).append(name)
+        _dialogs[key] = rna.dialog.Dialog(start, rules, found=found, own=own).run()
+    return yaml.safe_dump(_dialogs[key], sort_keys=False)
+
+
+@pass_context
+def nodes_dialog_pending(context) -> str:
+    """A `nodes` validator: an error for the answer being updated when the dialog is to replace it.
+
+    Copier drops a previous answer that its validator refuses and takes the question's
+    default instead; with `ask: false` that default is the dialog's result (nodes_dialog).
+    """
+    if context.get("edit_nodes") is not True or not _interactive(context):
+        return ""
+    key, _ = _dialog_start(context)
+    if key in _dialogs and context.get("nodes") == _dialogs[key]:
+        return ""
+    return "the nodes are edited step by step"
 
 
 @pass_context
@@ -197,6 +257,7 @@ class RnaExtension(Extension):
             answer_error=answer_error, answers_file_name=answers_file_name, base_files=base_files,
             builds_interfaces=rna.distros.BUILDS_INTERFACES, languages=rna.distros.languages,
             default_description=default_description, default_nodes=default_nodes,
+            nodes_dialog=nodes_dialog, nodes_dialog_pending=nodes_dialog_pending,
             existing_package=existing_package, found_interfaces=found_interfaces, git_config=git_config,
             in_git_work_tree=in_git_work_tree, lab=lab, docs_url=rna.lab.docs_url, login_name=getpass.getuser,
             package_files=package_files,

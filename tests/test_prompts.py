@@ -11,19 +11,16 @@ lines whole on the screen.
 
 from __future__ import annotations
 
-import os
 import re
-import sys
-from pathlib import Path
 
 import copier
 import copier._main
 import pexpect
-import pyte
 import pytest
 import yaml
 from rna import lab, wording
 from support.generation import ROOT
+from support.terminal import Terminal
 from wcwidth import wcswidth
 
 WIDTH = 79
@@ -85,7 +82,8 @@ def prompts(template_dir, tmp_path_factory):
 
 def test_every_question_that_can_be_asked_is_seen(prompts):
     never_asked = {name for name, question in QUESTIONS.items() if question.get("ask") is False}
-    assert set(prompts) == set(QUESTIONS) - never_asked
+    # edit_nodes is asked on an update only (tests/test_dialog.py draws it).
+    assert set(prompts) == set(QUESTIONS) - never_asked - {"edit_nodes"}
 
 
 def test_every_prompt_line_fits_an_80_column_terminal(prompts):
@@ -146,7 +144,6 @@ def test_found_lines_wrap_whole_names():
 # ----------------------------------------------------------------------------- at an 80x24 terminal
 
 DOWN = "\x1b[B"
-COPIER = str(Path(sys.executable).with_name("copier"))
 # The prompts of a first copy in order, with the keys that answer them; ament_cmake asks the language.
 BEFORE_THE_NODES = [("package_name", ""), ("maintainer", ""), ("maintainer_email", ""), ("license", ""),
                     ("copyright_holder", ""), ("ros_distro", ""), ("build_type", DOWN)]
@@ -155,33 +152,7 @@ ONE_NODE = [("node_setup", DOWN), ("node_name", ""), ("node_language", ""), ("no
             ("node_action_servers", ""), ("node_action_clients", ""), ("node_timers", ""),
             ("node_parameters", ""), ("description", "")]
 # A YAML answer ends with Esc then Enter.
-AS_YAML = [("node_setup", DOWN + DOWN), ("interfaces", "\x1b"), ("nodes", "\x1b"), ("description", "")]
-
-
-class Terminal:
-    """An 80x24 terminal (pyte) that `copier copy` draws on through a pseudo-terminal (pexpect)."""
-
-    def __init__(self, args: list[str], log: Path):
-        self.screen = pyte.Screen(80, 24)
-        self.stream = pyte.Stream(self.screen)
-        self.log = log.open("w")
-        env = {**os.environ, "TERM": "xterm", "PROMPT_TOOLKIT_NO_CPR": "1"}
-        self.child = pexpect.spawn(COPIER, args, env=env, encoding="utf-8", timeout=30, dimensions=(24, 80))
-        self.child.logfile_read = self
-
-    def write(self, data: str) -> None:
-        self.log.write(data)
-        self.stream.feed(data)
-
-    def flush(self) -> None:
-        self.log.flush()
-
-    def rows_at(self, lines: list[str]) -> list[str]:
-        """The screen's rows once a prompt's help `lines` (without the question mark) are drawn."""
-        self.child.expect_exact(lines[0][:30])
-        if len(lines) > 1:
-            self.child.expect_exact(lines[-1].strip()[-30:])
-        return [row.rstrip() for row in self.screen.display]
+AS_YAML = [("node_setup", DOWN * 3), ("interfaces", "\x1b"), ("nodes", "\x1b"), ("description", "")]
 
 
 @pytest.mark.parametrize("path", [ONE_NODE, AS_YAML], ids=["one node", "as yaml"])

@@ -135,7 +135,9 @@ def answers_schema(docs_url: str = "") -> dict:
         "interfaces": _interfaces(),
         "interfaces_location": {"enum": ["separate", "package"]},
         "nodes": _node(),
-        "node_setup": {"enum": ["demo", "one", "list"]},
+        "node_setup": {"enum": ["demo", "one", "dialog", "list"]},
+        "edit_nodes": {"type": "boolean",
+                       "description": "not recorded: whether an update edits the nodes step by step"},
         "node_name": {"type": "string", "pattern": _anchored(names.SNAKE_CASE), "maxLength": names.NODE_NAME_MAX},
         "node_language": {"enum": ["cpp", "python"]},
         **{question: {"type": "string", "description": f"comma-separated short forms of {key}"}

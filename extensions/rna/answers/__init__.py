@@ -248,7 +248,7 @@ class Answers:
 _CHOICES = {
     "interfaces_location": ("separate", "package"),
     "target": ("package", "node"),
-    "node_setup": ("demo", "one", "list"),
+    "node_setup": ("demo", "one", "dialog", "list"),
     "node_language": ("cpp", "python"),
 }
 

@@ -1,0 +1,64 @@
+"""`copier` in a pseudo-terminal of 80x24 (pexpect), drawn by a terminal emulator (pyte)."""
+
+from __future__ import annotations
+
+import os
+import re
+import sys
+from pathlib import Path
+
+import pexpect
+import pyte
+from wcwidth import wcswidth
+
+COPIER = str(Path(sys.executable).with_name("copier"))
+WIDTH = 79  # the widest line an 80-column terminal shows without wrapping it
+
+
+class Terminal:
+    """An 80x24 terminal that `copier <args>` draws on; `wide_rows` keeps every row drawn wider than WIDTH."""
+
+    def __init__(self, args: list[str], log: Path, cwd: Path | None = None, env: dict | None = None):
+        self.screen = pyte.Screen(80, 24)
+        self.stream = pyte.Stream(self.screen)
+        self.log = log.open("w")
+        self.wide_rows: list[str] = []
+        # No cursor-position requests: pexpect does not answer them, and each would wait.
+        env = {**os.environ, **(env or {}), "TERM": "xterm", "PROMPT_TOOLKIT_NO_CPR": "1"}
+        self.child = pexpect.spawn(COPIER, args, env=env, encoding="utf-8", timeout=30, dimensions=(24, 80),
+                                   cwd=str(cwd) if cwd else None)
+        self.child.logfile_read = self
+
+    def write(self, data: str) -> None:
+        self.log.write(data)
+        self.stream.feed(data)
+        # A row that fills the terminal is a line the terminal wrapped (or one that just fits).
+        self.wide_rows.extend(row.rstrip() for row in self.screen.display if wcswidth(row.rstrip()) > WIDTH)
+
+    def flush(self) -> None:
+        self.log.flush()
+
+    def rows(self) -> list[str]:
+        return [row.rstrip() for row in self.screen.display]
+
+    def rows_at(self, lines: list[str]) -> list[str]:
+        """The screen's rows once a prompt's help `lines` (without the question mark) are drawn."""
+        self.child.expect_exact(lines[0][:30])
+        if len(lines) > 1:
+            self.child.expect_exact(lines[-1].strip()[-30:])
+        return self.rows()
+
+    def answer(self, prompt: str, keys: str) -> None:
+        """Wait for `prompt`, then type `keys` and Enter."""
+        self.child.expect_exact(prompt)
+        self.child.send(keys + "\r")
+
+    def choose(self, message: str, keys: str) -> None:
+        """Wait for a fresh select prompt `message` (its instruction is drawn only while it is open),
+        then type `keys` (which filter the choices in the nodes dialog) and Enter."""
+        self.child.expect(re.escape(message) + r" (\x1b\[[0-9;]*m)*\(Use arrow keys")
+        self.child.send(keys + "\r")
+
+    def close(self) -> None:
+        self.child.close(force=True)
+        self.log.close()

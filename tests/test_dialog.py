@@ -1,0 +1,267 @@
+"""The nodes dialog: many nodes without YAML, at a first copy and in `copier update`.
+
+The pure parts of extensions/rna/dialog.py are driven by a scripted asker; then a newcomer
+drives `copier copy` and `copier update` in an 80x24 pseudo-terminal (support/terminal.py).
+"""
+
+from __future__ import annotations
+
+import pexpect
+import yaml
+from rna import dialog
+from rna.answers.nodes import Types
+from support.generation import answers_of, generate, git, subprocess_env
+from support.terminal import Terminal
+
+# ----------------------------------------------------------------------------- the pure parts
+
+
+class Script(dialog.Asker):
+    """Answers from a list; an answer its validator refuses is kept in `refused` and the next one is taken."""
+
+    def __init__(self, answers: list[str]):
+        self.answers = list(answers)
+        self.refused: list[tuple[str, str]] = []
+        self.said: list[str] = []
+        self.menus: list[list[str]] = []
+
+    def select(self, message, choices, default=None):
+        self.menus.append(list(choices))
+        wanted = self.answers.pop(0)
+        picked = [choice for choice in choices if choice.startswith(wanted)]
+        assert picked, (wanted, choices)
+        return picked[0]
+
+    def text(self, message, default="", validate=None, complete=()):
+        while True:
+            answer = self.answers.pop(0) or default
+            error = validate(answer) if validate else None
+            if not error:
+                return answer
+            self.refused.append((answer, error))
+
+    def say(self, line):
+        self.said.append(line)
+
+
+def rules(build_type="ament_python", distro="jazzy") -> dialog.Rules:
+    return dialog.Rules("pkg", build_type, Types(2, distro=distro))
+
+
+def test_endpoints_read_as_their_short_forms():
+    assert dialog.entry_text("publishers", "cmd_vel:geometry_msgs/msg/Twist") == "cmd_vel:geometry_msgs/msg/Twist"
+    assert dialog.entry_text("subscribers", {"topic": "scan", "type": "sensor_msgs/msg/LaserScan",
+                                             "qos": "sensor_data"}) == "scan:sensor_msgs/msg/LaserScan:sensor_data"
+    assert dialog.entry_text("timers", 0.5) == "0.5"
+    assert dialog.entry_text("timers", {"name": "loop", "period": 0.1}) == "loop:0.1"
+    assert dialog.entry_text("parameters", {"name": "rate", "type": "double", "default": 2.0}) == "rate:double=2.0"
+
+
+def test_a_timer_is_named_timer_unless_named():
+    assert [dialog.timer_name(entry) for entry in (0.5, "1.0", "loop:0.1", {"period": 2})] == [
+        "timer", "timer", "loop", "timer"]
+
+
+def test_a_node_in_one_line():
+    node = {"name": "talker", "language": "python", "publishers": ["a:std_msgs/msg/String"], "timers": [0.5, 1]}
+    assert dialog.node_line(node) == "talker (Python): 1 publisher, 2 timers"
+    assert dialog.node_line({"name": "idle"}) == "idle: nothing yet"
+
+
+def test_choices_fit_on_their_questions_line():
+    assert len(dialog.fit("x" * 100, 20)) == 20
+    assert dialog.fit("short", 20) == "short"
+    assert dialog.choice_width("What next?") == 79 - 4 - len("What next?")
+
+
+def test_types_offered_start_with_the_packages_own_then_the_workspace_then_common_ones():
+    offered = dialog.type_choices("msg", 2, "jazzy", found=["nav_interfaces/msg/Goal", "nav_interfaces/srv/Go"],
+                                  own=["Target"])
+    assert offered[:3] == ["Target", "nav_interfaces/msg/Goal", "std_msgs/msg/Bool"]
+    assert "nav_interfaces/srv/Go" not in offered
+    assert "geometry_msgs/msg/Twist" in offered and "std_srvs/srv/Trigger" not in offered
+    assert "std_srvs/srv/Trigger" in dialog.type_choices("srv", 2, "jazzy")
+    assert "std_msgs/String" in dialog.type_choices("msg", 1, "noetic")
+
+
+def test_the_dialog_builds_nodes_in_the_short_forms():
+    script = Script([
+        "Add a node", "Bad Name", "driver",
+        "Add a publisher", "cmd vel", "cmd_vel", "geometry_msgs/msg/Twst", "geometry_msgs/msg/Twist",
+        "Add a subscriber", "scan", "sensor_msgs/msg/LaserScan:sensor_data",
+        "Add a timer", "", "abc", "0.1", "Add a timer", "", "0.2",
+        "Add a parameter", "max_speed", "double", "fast", "0.5",
+        "Add a service server", "reset", "std_srvs/srv/Trigger",
+        "Remove service server", "Rename", "talker", "motor_driver",
+        "Done with", "Remove listener", "Done"])
+    nodes = dialog.Dialog(yaml.safe_load("[{name: talker, timers: [0.5]}, {name: listener}]"), rules(),
+                          script).run()
+    assert nodes == [
+        {"name": "talker", "timers": [0.5], "language": "python"},
+        {"name": "motor_driver", "language": "python", "publishers": ["cmd_vel:geometry_msgs/msg/Twist"],
+         "subscribers": ["scan:sensor_msgs/msg/LaserScan:sensor_data"], "timers": ["timer:0.1", "timer2:0.2"],
+         "parameters": ["max_speed:double=0.5"]},
+    ]
+    refused = dict(script.refused)
+    assert refused["Bad Name"].startswith("'Bad Name' is not a valid node name")
+    assert refused["cmd vel"].startswith("topic 'cmd vel'")
+    # The whole node is read as the `nodes` answer is: the error names the node.
+    assert refused["geometry_msgs/msg/Twst"].startswith("node 'driver': ") and "Twist?" in refused[
+        "geometry_msgs/msg/Twst"]
+    assert refused["abc"].startswith("node 'driver': timer 'timer'")
+    assert refused["fast"].startswith("node 'driver': parameter 'max_speed'")
+    assert refused["talker"] == "there is a node 'talker' already"
+    assert "Node driver (Python): nothing yet" in script.said
+
+
+def test_an_ament_cmake_node_asks_its_language_and_a_package_keeps_one_node():
+    script = Script(["Remove listener", "Edit talker", "Language", "Python", "Done with", "Remove talker", "Done",
+                     "Add a node", "solo", "C++", "Done with", "Done"])
+    nodes = dialog.Dialog([{"name": "talker"}, {"name": "listener"}], rules("ament_cmake"), script).run()
+    assert nodes == [{"name": "solo", "language": "cpp"}]
+    assert script.said[-2] == "A package needs a node: add one."
+
+
+# ----------------------------------------------------------------------------- at an 80x24 terminal
+
+DOWN = "\x1b[B"
+
+
+def add_topic(terminal: Terminal, kind: str, topic: str, type_: str) -> None:
+    terminal.choose("What next?", f"Add a {kind}")
+    terminal.answer("Topic name", topic)
+    terminal.answer("Message type", type_)
+
+
+def add_node(terminal: Terminal, name: str) -> None:
+    terminal.choose("what next?", "Add a node")
+    terminal.answer("Node name", name)
+
+
+# What the newcomer below makes, and the next test starts from.
+THREE_NODES = [
+    {"language": "python", "name": "driver", "publishers": ["odom:nav_msgs/msg/Odometry"],
+     "subscribers": ["cmd_vel:geometry_msgs/msg/Twist"]},
+    {"language": "python", "name": "planner", "publishers": ["cmd_vel:geometry_msgs/msg/Twist"],
+     "service_servers": ["replan:std_srvs/srv/Trigger"]},
+    {"language": "python", "name": "monitor", "parameters": ["limit:double=2.5"],
+     "subscribers": ["odom:nav_msgs/msg/Odometry"]},
+]
+
+
+def test_a_newcomer_makes_three_nodes_without_yaml(template_dir, tmp_path):
+    destination = tmp_path / "rover"
+    terminal = Terminal(["copy", "--trust", "--vcs-ref=HEAD", str(template_dir), str(destination)],
+                        tmp_path / "copy.log")
+    try:
+        for prompt in ("Package name", "full name", "e-mail", "License", "Copyright holder", "ROS distribution",
+                       "ament_python holds"):
+            terminal.answer(prompt, "")
+        terminal.answer("describe the package's nodes", DOWN * 2)
+        terminal.choose("what next?", "Remove talker")
+        terminal.choose("what next?", "Remove listener")
+        terminal.choose("what next?", "Add a node")
+        terminal.answer("Node name", "driver")
+        add_topic(terminal, "subscriber", "cmd_vel", "geometry_msgs/msg/Twist")
+        add_topic(terminal, "publisher", "odom", "nav_msgs/msg/Odometry")
+        terminal.choose("What next?", "Done with")
+        add_node(terminal, "planner")
+        add_topic(terminal, "publisher", "cmd_vel", "geometry_msgs/msg/Twist")
+        terminal.choose("What next?", "Add a service server")
+        terminal.answer("Service name", "replan")
+        terminal.answer("Service type", "std_srvs/srv/Trigger")
+        terminal.choose("What next?", "Done with")
+        add_node(terminal, "monitor")
+        add_topic(terminal, "subscriber", "odom", "nav_msgs/msg/Odometry")
+        terminal.choose("What next?", "Add a parameter")
+        terminal.answer("Parameter name", "limit")
+        terminal.choose("Parameter type", "")  # double
+        terminal.answer("Default value", "2.5")
+        terminal.choose("What next?", "Done with")
+        terminal.choose("what next?", "Done")
+        terminal.answer("One sentence", "")
+        # The dialog's rows; the description's default that follows is as long as the nodes make it.
+        cut = [row for row in terminal.wide_rows if "The driver node publishes" not in row]
+        terminal.child.expect(pexpect.EOF, timeout=60)
+    finally:
+        terminal.close()
+    assert terminal.child.exitstatus == 0, (tmp_path / "copy.log").read_text()
+    assert cut == []
+    assert answers_of(destination)["nodes"] == THREE_NODES
+    module = destination / "rover" / "rover"
+    assert {path.name for path in module.glob("*_base.py")} == {"driver_base.py", "planner_base.py",
+                                                               "monitor_base.py"}
+    assert "def on_odom(self, msg):" in (module / "monitor_base.py").read_text()
+
+
+def committed_package(template_dir, destination, nodes) -> None:
+    """A package generated and committed to git, as `copier update` needs it."""
+    generate(template_dir, destination, {"package_name": "rover", "nodes": nodes})
+    git("init", "-q", "-b", "main", cwd=destination)
+    git("add", "-A", cwd=destination)
+    git("commit", "-q", "-m", "rover from rna-template", cwd=destination)
+
+
+def test_an_update_adds_edits_and_removes_nodes_step_by_step(template_dir, tmp_path):
+    destination = tmp_path / "rover"
+    committed_package(template_dir, destination, THREE_NODES)
+    # --skip-answered: straight to the nodes.
+    terminal = Terminal(["update", "--trust", "--skip-answered", "--vcs-ref=HEAD"], tmp_path / "update.log",
+                        cwd=destination, env=subprocess_env())
+    try:
+        terminal.child.expect_exact("Add, edit or remove nodes step by step?")
+        terminal.child.send("y")  # a yes/no prompt takes one key
+        terminal.choose("what next?", "Remove monitor")
+        terminal.choose("what next?", "Edit planner")
+        terminal.choose("What next?", "Remove service server")
+        terminal.choose("What next?", "Add a timer")
+        terminal.answer("Timer name", "\b" * 10 + "replan")
+        terminal.answer("Period in seconds", "1.0")
+        terminal.choose("What next?", "Done with")
+        add_node(terminal, "logger")
+        add_topic(terminal, "subscriber", "odom", "nav_msgs/msg/Odometry")
+        terminal.choose("What next?", "Done with")
+        terminal.choose("what next?", "Done")
+        terminal.child.expect_exact("Running task")
+        cut = [row for row in terminal.wide_rows if not row.startswith(" > Running task")]  # Copier's paths
+        terminal.child.expect(pexpect.EOF, timeout=60)
+    finally:
+        terminal.close()
+    assert terminal.child.exitstatus == 0, (tmp_path / "update.log").read_text()
+    assert cut == []
+    answers = answers_of(destination)
+    assert "edit_nodes" not in answers  # asked again at each update
+    assert answers["nodes"] == [
+        THREE_NODES[0],
+        {"language": "python", "name": "planner", "publishers": ["cmd_vel:geometry_msgs/msg/Twist"],
+         "timers": ["replan:1.0"]},
+        {"language": "python", "name": "logger", "subscribers": ["odom:nav_msgs/msg/Odometry"]},
+    ]
+    module = destination / "rover" / "rover"
+    assert {path.name for path in module.glob("*_base.py")} == {"driver_base.py", "planner_base.py",
+                                                               "logger_base.py"}
+    planner = (module / "planner_base.py").read_text()
+    assert "replan" in planner and "Trigger" not in planner
+
+
+def test_an_update_can_still_edit_the_nodes_as_yaml(template_dir, tmp_path):
+    """Answering No shows the nodes as YAML, as before."""
+    destination = tmp_path / "rover"
+    committed_package(template_dir, destination, THREE_NODES)
+    terminal = Terminal(["update", "--trust", "--vcs-ref=HEAD"], tmp_path / "update.log", cwd=destination,
+                        env=subprocess_env())
+    # Each prompt of an update in turn, with the keys that keep its answer (YAML ends with Esc, Enter).
+    try:
+        for prompt in ("Package name", "full name", "e-mail", "License", "Copyright holder", "ROS distribution",
+                       "ament_python holds"):
+            terminal.answer(prompt, "")
+        terminal.answer("Messages, services and actions", "\x1b")
+        terminal.child.expect_exact("step by step?")
+        terminal.child.send("n")  # a yes/no prompt takes one key
+        terminal.answer("The package's nodes, as a YAML list", "\x1b")
+        terminal.answer("One sentence", "")
+        terminal.child.expect(pexpect.EOF, timeout=60)
+    finally:
+        terminal.close()
+    assert terminal.child.exitstatus == 0, (tmp_path / "update.log").read_text()
+    assert answers_of(destination)["nodes"] == THREE_NODES
