@@ -35,6 +35,7 @@ class Script(dialog.Asker):
     def text(self, message, default="", validate=None, complete=()):
         while True:
             answer = self.answers.pop(0) or default
+            answer = "" if answer == "\b" else answer  # the default erased
             error = validate(answer) if validate else None
             if not error:
                 return answer
@@ -86,6 +87,7 @@ def test_types_offered_start_with_the_packages_own_then_the_workspace_then_commo
 
 def test_the_dialog_builds_nodes_in_the_short_forms():
     script = Script([
+        "Add a node", "", "Edit talker", "Add a publisher", "", "Add a timer", "\b", "Done with",
         "Add a node", "Bad Name", "driver",
         "Add a publisher", "cmd vel", "cmd_vel", "geometry_msgs/msg/Twst", "geometry_msgs/msg/Twist",
         "Add a subscriber", "scan", "sensor_msgs/msg/LaserScan:sensor_data",
@@ -162,7 +164,11 @@ def test_a_newcomer_makes_three_nodes_without_yaml(template_dir, tmp_path):
         terminal.choose("what next?", "Remove listener")
         terminal.choose("what next?", "Add a node")
         terminal.answer("Node name", "driver")
-        add_topic(terminal, "subscriber", "cmd_vel", "geometry_msgs/msg/Twist")
+        terminal.choose("What next?", "Add a subscriber")
+        terminal.answer("Topic name", "cmd_vel")
+        terminal.answer("Message type", "geometry_msgs/msg/Twst")
+        terminal.child.expect_exact("node 'driver': 'geometry_msgs/msg/Twst' is not a message")  # wrapped
+        terminal.child.send("\x7f" * 3 + "wist\r")
         add_topic(terminal, "publisher", "odom", "nav_msgs/msg/Odometry")
         terminal.choose("What next?", "Done with")
         add_node(terminal, "planner")

@@ -55,8 +55,14 @@ PARAMETER_TYPES = (*SCALAR_TYPES, *(f"{scalar}[]" for scalar in SCALAR_TYPES))
 # Offered first in a type list: the packages most nodes use.
 COMMON_PACKAGES = ("std_msgs", "geometry_msgs", "sensor_msgs", "nav_msgs", "std_srvs", "example_interfaces")
 
+BACK = "(empty: back)"  # a name left empty adds nothing
 ADD_NODE = "Add a node"
 DONE = "Done"
+
+
+def optional(check: Callable[[str], str | None]) -> Callable[[str], str | None]:
+    """A name's check that lets an empty answer through (it goes back to the menu)."""
+    return lambda answer: check(answer.strip()) if answer.strip() else None
 
 
 def article(word: str) -> str:
@@ -234,8 +240,10 @@ class Dialog:
 
     def add_node(self) -> None:
         others = [node["name"] for node in self.nodes]
-        name = self.ask.text("Node name, lower_snake_case (e.g. motion_control)",
-                             validate=lambda answer: self.rules.name_error(answer.strip(), others)).strip()
+        name = self.ask.text(f"Node name, lower_snake_case {BACK}",
+                             validate=optional(lambda answer: self.rules.name_error(answer, others))).strip()
+        if not name:
+            return
         node = {"name": name}
         if len(self.rules.languages) > 1:
             node["language"] = self._language(self.rules.languages[0])
@@ -302,8 +310,10 @@ class Dialog:
         """Two prompts: the name, then the type (a period for a timer, type=default for a parameter)."""
         if kind.interface:
             what = {"msg": "topic", "srv": "service", "action": "action"}[kind.interface]
-            name = self.ask.text(NAME_PROMPTS[kind.interface],
-                                 validate=lambda answer: names.topic_name_error(answer.strip(), what)).strip()
+            name = self.ask.text(f"{NAME_PROMPTS[kind.interface]} {BACK}",
+                                 validate=optional(lambda answer: names.topic_name_error(answer, what))).strip()
+            if not name:
+                return
             choices = type_choices(kind.interface, self.rules.types.ros, self.rules.types.distro, self.found,
                                    self.own.get(kind.interface, ()))
             value = self.ask.text(TYPE_PROMPTS[kind.interface], complete=choices,
@@ -312,15 +322,19 @@ class Dialog:
         elif kind.key == "timers":
             taken = {timer_name(entry) for entry in node.get("timers") or []}
             suggested = next(name for name in ("timer", *(f"timer{n}" for n in range(2, 100))) if name not in taken)
-            name = self.ask.text("Timer name", default=suggested,
-                                 validate=lambda answer: names.identifier_error(answer.strip(), "timer")).strip()
+            name = self.ask.text(f"Timer name {BACK}", default=suggested,
+                                 validate=optional(lambda answer: names.identifier_error(answer, "timer"))).strip()
+            if not name:
+                return
             value = self.ask.text("Period in seconds (e.g. 0.1)",
                                   validate=lambda answer: self._entry_error(node, kind, short_endpoint(
                                       name, answer))).strip()
         else:
             ros = self.rules.types.ros
-            name = self.ask.text("Parameter name",
-                                 validate=lambda answer: names.parameter_name_error(answer.strip(), ros)).strip()
+            name = self.ask.text(f"Parameter name {BACK}",
+                                 validate=optional(lambda answer: names.parameter_name_error(answer, ros))).strip()
+            if not name:
+                return
             ptype = self.ask.select("Parameter type", PARAMETER_TYPES, default="double")
 
             def typed(answer: str) -> str:
