@@ -7,6 +7,7 @@ drives `copier copy` and `copier update` in an 80x24 pseudo-terminal (support/te
 from __future__ import annotations
 
 import pexpect
+import pytest
 import yaml
 from rna import dialog
 from rna.answers.nodes import Types
@@ -122,6 +123,12 @@ def test_an_ament_cmake_node_asks_its_language_and_a_package_keeps_one_node():
     nodes = dialog.Dialog([{"name": "talker"}, {"name": "listener"}], rules("ament_cmake"), script).run()
     assert nodes == [{"name": "solo", "language": "cpp"}]
     assert script.said[-2] == "A package needs a node: add one."
+
+
+def test_without_a_terminal_the_dialog_asks_nothing_and_keeps_the_nodes(template_dir, tmp_path):
+    """--defaults (or no terminal): the dialog's nodes are those it starts from, the demo."""
+    generate(template_dir, tmp_path / "demo", {"node_setup": "dialog"})
+    assert [node["name"] for node in answers_of(tmp_path / "demo")["nodes"]] == ["talker", "listener"]
 
 
 # ----------------------------------------------------------------------------- at an 80x24 terminal
@@ -250,6 +257,7 @@ def test_an_update_adds_edits_and_removes_nodes_step_by_step(template_dir, tmp_p
     assert "replan" in planner and "Trigger" not in planner
 
 
+@pytest.mark.update  # the flow as it was before the dialog: in the update tier
 def test_an_update_can_still_edit_the_nodes_as_yaml(template_dir, tmp_path):
     """Answering No shows the nodes as YAML, as before."""
     destination = tmp_path / "rover"
