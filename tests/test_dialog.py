@@ -125,6 +125,30 @@ def test_an_ament_cmake_node_asks_its_language_and_a_package_keeps_one_node():
     assert script.said[-2] == "A package needs a node: add one."
 
 
+def test_lifecycle_and_component_are_switched_on_and_off_within_the_rules():
+    script = Script(["Edit talker", "Lifecycle node: no", "Component", "Language", "Python", "Component", "Done with",
+                     "Done"])
+    nodes = dialog.Dialog([{"name": "talker", "language": "cpp"}], rules("ament_cmake"), script).run()
+    assert nodes == [{"name": "talker", "language": "cpp", "lifecycle": True}]
+    # A component is C++: the language stays, said why; then the component goes.
+    assert "node 'talker': components are C++ nodes (rclcpp_components)" in script.said
+    assert "Lifecycle node: yes" in script.menus[2] and "Component (rclcpp_components): yes" in script.menus[3]
+
+
+def test_ros1_types_and_long_forms_kept():
+    """A catkin node names ROS 1 types; endpoints written as mappings stay as they are, and can go."""
+    script = Script(["Edit driver", "Remove subscriber", "Add a publisher", "odom", "nav_msgs/Odometr",
+                     "nav_msgs/Odometry", "Done with", "Done"])
+    start = [{"name": "driver", "language": "cpp", "subscribers": [{"topic": "cmd_vel", "type": "geometry_msgs/Twist"}],
+              "parameters": [{"name": "rate", "type": "double", "default": 10.0}]}]
+    nodes = dialog.Dialog(start, dialog.Rules("pkg", "catkin", Types(1, distro="noetic")), script).run()
+    assert nodes == [{"name": "driver", "language": "cpp", "parameters": [{"name": "rate", "type": "double",
+                                                                          "default": 10.0}],
+                      "publishers": ["odom:nav_msgs/Odometry"]}]
+    assert "Remove parameter rate:double=10.0" in script.menus[1]
+    assert "did you mean Odometry?" in dict(script.refused)["nav_msgs/Odometr"]
+
+
 def test_without_a_terminal_the_dialog_asks_nothing_and_keeps_the_nodes(template_dir, tmp_path):
     """--defaults (or no terminal): the dialog's nodes are those it starts from, the demo."""
     generate(template_dir, tmp_path / "demo", {"node_setup": "dialog"})

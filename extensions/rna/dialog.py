@@ -55,6 +55,7 @@ PARAMETER_TYPES = (*SCALAR_TYPES, *(f"{scalar}[]" for scalar in SCALAR_TYPES))
 # Offered first in a type list: the packages most nodes use.
 COMMON_PACKAGES = ("std_msgs", "geometry_msgs", "sensor_msgs", "nav_msgs", "std_srvs", "example_interfaces")
 
+FLAGS = {"lifecycle": "Lifecycle node", "component": "Component (rclcpp_components)"}
 BACK = "(empty: back)"  # a name left empty adds nothing
 ADD_NODE = "Add a node"
 DONE = "Done"
@@ -276,6 +277,9 @@ class Dialog:
             if len(self.rules.languages) > 1:
                 choices.append(f"Language: {distros.LANGUAGE_NAMES.get(str(node.get('language')), '?')}")
                 actions.append(("language", None))
+            for flag in self.flags(node):
+                choices.append(f"{FLAGS[flag]}: {'yes' if node.get(flag) else 'no'}")
+                actions.append(("flag", flag))
             choices.append(f"Done with {node['name']}")
             actions.append(("done", None))
             self.ask.say(fit(f"Node {node_line(node)}"))
@@ -293,7 +297,25 @@ class Dialog:
             elif action == "rename":
                 node["name"] = self._rename(node)
             elif action == "language":
-                node["language"] = self._language(str(node.get("language")))
+                self._change(node, "language", self._language(str(node.get("language"))))
+            elif action == "flag":
+                self._change(node, what, not node.get(what))
+
+    def flags(self, node: Mapping) -> list[str]:
+        """The yes/no keys a node may change here: ROS 2 nodes, and components in C++."""
+        if self.rules.types.ros != 2:
+            return []
+        return ["lifecycle", "component"] if node.get("language") == "cpp" or node.get("component") else ["lifecycle"]
+
+    def _change(self, node: dict, key: str, value: object) -> None:
+        """Set one key, unless the node would then break a rule: then say which, and keep it."""
+        error = self.rules.node_error({**node, key: value})
+        if error:
+            self.ask.say(error)
+        elif value is False:
+            node.pop(key, None)
+        else:
+            node[key] = value
 
     def _rename(self, node: dict) -> str:
         others = [other["name"] for other in self.nodes if other is not node]
