@@ -246,7 +246,7 @@ def test_an_update_adds_edits_and_removes_nodes_step_by_step(template_dir, tmp_p
     terminal = Terminal(["update", "--trust", "--skip-answered", "--vcs-ref=HEAD"], tmp_path / "update.log",
                         cwd=destination, env=subprocess_env())
     try:
-        terminal.child.expect_exact("Add, edit or remove nodes step by step?")
+        terminal.child.expect_exact("Add, edit or remove nodes step by step? (else keep them)")
         terminal.child.send("y")  # a yes/no prompt takes one key
         terminal.choose("what next?", "Remove monitor")
         terminal.choose("what next?", "Edit planner")
@@ -294,7 +294,7 @@ def test_an_update_can_still_edit_the_nodes_as_yaml(template_dir, tmp_path):
                        "ament_python holds"):
             terminal.answer(prompt, "")
         terminal.answer("Messages, services and actions", "\x1b")
-        terminal.child.expect_exact("step by step?")
+        terminal.child.expect_exact("step by step? (else as YAML)")
         terminal.child.send("n")  # a yes/no prompt takes one key
         terminal.answer("The package's nodes, as a YAML list", "\x1b")
         terminal.answer("One sentence", "")
