@@ -225,6 +225,8 @@ class Dialog:
             choices.append(DONE)
             count = len(self.nodes)
             picked = self.ask.select(message, choices, default=DONE if self.nodes else ADD_NODE)
+            if picked not in choices:  # a filter that matched nothing
+                continue
             if picked == DONE:
                 if self.nodes:
                     return self.nodes
@@ -257,7 +259,7 @@ class Dialog:
         titles = {distros.LANGUAGE_NAMES[language]: language for language in self.rules.languages}
         picked = self.ask.select("Language of the node", list(titles),
                                  default=distros.LANGUAGE_NAMES.get(current))
-        return titles[picked]
+        return titles.get(picked, current)
 
     # --- one node
 
@@ -284,6 +286,8 @@ class Dialog:
             actions.append(("done", None))
             self.ask.say(fit(f"Node {node_line(node)}"))
             picked = self.ask.select(message, choices, default=choices[-1])
+            if picked not in choices:
+                continue
             action, what = actions[choices.index(picked)]
             if action == "done":
                 return
@@ -357,7 +361,7 @@ class Dialog:
                                  validate=optional(lambda answer: names.parameter_name_error(answer, ros))).strip()
             if not name:
                 return
-            ptype = self.ask.select("Parameter type", PARAMETER_TYPES, default="double")
+            ptype = self.ask.select("Parameter type", PARAMETER_TYPES, default="double") or "double"
 
             def typed(answer: str) -> str:
                 return f"{ptype}={answer.strip()}" if answer.strip() else ptype
