@@ -32,6 +32,7 @@ def node_features(node) -> frozenset[str]:
         "services": bool(node.service_servers or node.service_clients),
         "actions": bool(node.actions),
         "action_servers": bool(node.action_servers),
+        "no_action_servers": not node.action_servers,
         "action_clients": bool(node.action_clients),
         "sensor_data_qos": any(t.qos.profile == "sensor_data" for t in node.publishers + node.subscribers),
         "parameter_descriptors": any(p.has_descriptor for p in parameters),
@@ -58,10 +59,13 @@ ROS2_CPP = {
 }
 
 ROS2_PYTHON = {
-    "node": Needs(("rclpy",), (), ("rclpy", "rclpy.executors:ExternalShutdownException")),
+    # signal: the base module's CtrlC, which main() uses.
+    "node": Needs(("rclpy",), ("signal",), ("rclpy", "rclpy.executors:ExternalShutdownException",
+                                            "rclpy.signals:SignalHandlerOptions")),
     "plain": Needs(base=("rclpy.node:Node",)),
     "lifecycle": Needs(base=("rclpy.lifecycle:Node", "rclpy.lifecycle:State",
                              "rclpy.lifecycle:TransitionCallbackReturn")),
+    "no_action_servers": Needs(user=("rclpy.executors:SingleThreadedExecutor",)),
     "sensor_data_qos": Needs(base=("rclpy.qos:qos_profile_sensor_data",)),
     "action_servers": Needs(base=("rclpy.action:ActionServer", "rclpy.action:CancelResponse",
                                   "rclpy.action:GoalResponse", "rclpy.callback_groups:ReentrantCallbackGroup"),

@@ -16,6 +16,7 @@ class Ros2Python(PythonDialect):
         """Imports of the user's <node>.py: what its starter code uses."""
         node = self.node
         return import_block([*self._needs("user"), f"{self.base_module}:{node.base_class_name}",
+                             f"{self.base_module}:CtrlC",
                              *(self._import(t) for t in node.starter_interfaces)])
 
     @staticmethod
