@@ -15,6 +15,7 @@ import os
 import re
 import subprocess
 import sys
+import textwrap
 from collections.abc import Mapping
 from pathlib import Path
 
@@ -69,7 +70,30 @@ def answer_error(context, question: str) -> str:
     conf = context.get("_copier_conf") or {}
     if conf.get("defaults") or question in (conf.get("data") or {}):
         return ""
-    return rna.question_error(question, context) or ""
+    error = rna.question_error(question, context)
+    if error is None and question == "node_name" and context.get("target") == "node":
+        taken = _files_in_the_way(context, context.get("node_name"), rna.distros.languages(context.get("build_type")))
+        error = f"{taken[0]} is already in the package: choose another name" if taken else None
+    return _under_the_prompt(question, error) if error else ""
+
+
+def _under_the_prompt(question: str, error: str) -> str:
+    """The error in lines an 80-column terminal shows whole, after the prefix Copier puts first."""
+    prefix = f"Validation error for question '{question}': "
+    wrapped = textwrap.fill(error, 79, initial_indent=" " * len(prefix), break_long_words=False,
+                            break_on_hyphens=False)
+    return wrapped[len(prefix):]
+
+
+def _files_in_the_way(context, name: str, languages) -> list[str]:
+    """Files a node added to an existing package would land on (none when it is an update)."""
+    destination = (context.get("_copier_conf") or {}).get("dst_path")
+    if destination is None or (Path(destination) / answers_file_name(context)).exists():
+        return []
+    ros = rna.distros.generation(context.get("ros_distro"))
+    package = context.get("package_name")
+    return [path for language in languages for path in rna.layout.node_files(package, name, ros, language)
+            if (Path(destination) / path).exists()]
 
 
 @pass_context
@@ -376,14 +400,10 @@ def _check_given_answers(context) -> None:
 
 def _refuse_to_overwrite(package, context) -> None:
     """A node added to an existing package must not land on files already there."""
-    destination = (context.get("_copier_conf") or {}).get("dst_path")
-    if package.target != "node" or destination is None:
+    if package.target != "node":
         return
-    destination = Path(destination)
-    if (destination / answers_file_name(context)).exists():
-        return  # an update of the node
     node = package.nodes[0]
-    for path in (node.user_file, node.base_file, node.config_file):
-        if (destination / path).exists():
-            raise UserMessageError(f"rna-template: invalid answer to 'nodes': {path} already exists in "
-                                   f"{package.name}; choose another node name (nothing was written)")
+    taken = _files_in_the_way(context, node.name, (node.language,))
+    if taken:
+        raise UserMessageError(f"rna-template: invalid answer to 'nodes': {taken[0]} already exists in "
+                               f"{package.name}; choose another node name (nothing was written)")

@@ -11,6 +11,7 @@ import yaml
 from catkin_pkg.package import parse_package
 from rna import build_package, integrate
 from support import existing_packages
+from copier_glue import answer_error
 from support.generation import FIXED_ANSWERS, add_node, generate
 
 COPIER = str(Path(sys.executable).with_name("copier"))
@@ -159,3 +160,17 @@ def test_the_added_node_grows_with_copier_update(template_dir, tmp_path):
     outside = [line for line in cmake_before.splitlines() if "listener" not in line and "find_package" not in line]
     assert all(line in cmake.splitlines() for line in outside)
     assert "<depend>geometry_msgs</depend>" in (package / "package.xml").read_text()
+
+
+def test_a_name_whose_files_are_there_is_refused_at_the_name_question(tmp_path):
+    """The clash is the node name prompt's own error (Copier's validator), wrapped to show whole."""
+    package = existing_packages.ament_cmake(tmp_path / "pkg")
+    (package / "config").mkdir()
+    (package / "config" / "listener.yaml").write_text("mine: 1\n")
+    context = {"_copier_conf": {"dst_path": str(package), "data": {}}, "target": "node",
+               "package_name": "hand_driver", "ros_distro": "jazzy", "build_type": "ament_cmake"}
+    error = answer_error({**context, "node_name": "listener"}, "node_name")
+    lines = f"Validation error for question 'node_name': {error}".splitlines()
+    assert " ".join(lines).endswith("config/listener.yaml is already in the package: choose another name")
+    assert all(len(line) <= 79 for line in lines)
+    assert answer_error({**context, "node_name": "hearer"}, "node_name") == ""

@@ -44,6 +44,11 @@ def config_file(name: str) -> str:
     return CONFIG_FILE.format(name=name)
 
 
+def node_files(package: str, name: str, ros: int, language: str) -> tuple[str, ...]:
+    """The files a node brings (its own and its base file, its config), within its package."""
+    return (user_file(package, name, ros, language), base_file(package, name, ros, language), config_file(name))
+
+
 def executable(name: str, ros: int, language: str) -> str:
     """What rosrun / ros2 run starts: ROS 1 Python scripts keep their .py."""
     return f"{name}.py" if ros == 1 and language == "python" else name
