@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import math
+
 import pytest
+import yaml
 from rna import configs, names
 from rna.dialects import Ros1Cpp, Ros1Python, Ros2Cpp, Ros2Python, cpp, python
 from rna.interfaces import InterfaceType, parse_interface
@@ -180,7 +183,32 @@ def test_parameter_values_are_spelled_per_language():
     assert cpp.literal('say "hi"', ParameterType("string")) == '"say \\"hi\\""'
     assert configs.yaml_literal("true") == "'true'"
     assert configs.yaml_literal(1.0) == "1.0"
-    assert configs.yaml_literal([0.5, 1e-06]) == "[0.5, 1e-06]"
+    assert configs.yaml_literal([0.5, 1e-06]) == "[0.5, 1.0e-06]"
+
+
+@pytest.mark.parametrize(
+    ("value", "spelled"),
+    [(1e308, "1.0e+308"), (-1e-06, "-1.0e-06"), (5e-324, "5.0e-324"), (1.5e-07, "1.5e-07"), (-0.0, "-0.0"),
+     (2.0**53, "9007199254740992.0"), (math.inf, ".inf"), (-math.inf, "-.inf"), (math.nan, ".nan")],
+)
+def test_yaml_floats_read_back_as_floats_in_yaml_1_1(value, spelled):
+    """PyYAML and rosparam read `1e+308` as a string: a float needs a '.' before its exponent."""
+    assert configs.yaml_literal(value) == spelled
+    back = yaml.safe_load(spelled)
+    assert isinstance(back, float)
+    assert back == value or (math.isnan(back) and math.isnan(value))
+
+
+def test_extreme_numbers_are_literals_of_their_language():
+    assert python.literal(1e308) == "1e+308"
+    assert [python.literal(x) for x in (math.inf, -math.inf)] == ["float('inf')", "float('-inf')"]
+    assert math.isnan(eval(python.literal(math.nan)))  # noqa: S307 - our own literal
+    assert cpp.literal(1e308, ParameterType("double")) == "1e+308"
+    # -9223372036854775808 is the negation of a literal too large for int64_t.
+    assert cpp.literal(-2**63, ParameterType("int")) == "(-9223372036854775807 - 1)"
+    assert cpp.literal(2**63 - 1, ParameterType("int")) == "9223372036854775807"
+    with pytest.raises(ValueError, match="finite"):
+        cpp.literal(math.inf, ParameterType("double"))
 
 
 def test_python_imports_follow_the_google_order():

@@ -2,13 +2,29 @@
 
 from __future__ import annotations
 
+import math
+
 import yaml
+
+
+def yaml_float(value: float) -> str:
+    """A float as YAML 1.1 reads it back as a float, in PyYAML and rosparam (ROS 1) as in rcl (ROS 2).
+
+    YAML 1.1 takes a number with an exponent for a float only with a '.' before the exponent
+    (`1e+308` is a string, `1.0e+308` a float), and spells infinity and NaN `.inf` and `.nan`.
+    """
+    if math.isnan(value):
+        return ".nan"
+    if math.isinf(value):
+        return ".inf" if value > 0 else "-.inf"
+    mantissa, e, exponent = repr(value).partition("e")  # repr signs the exponent: 1e+308, 5e-324
+    return mantissa + ("" if "." in mantissa else ".0") + e + exponent
 
 
 def yaml_literal(value: object) -> str:
     """One YAML scalar or flow list that ROS's parameter parsers read back with the same type."""
     if isinstance(value, float):
-        return repr(value)
+        return yaml_float(value)
     if isinstance(value, list):
         return "[" + ", ".join(yaml_literal(item) for item in value) + "]"
     return yaml.safe_dump(value, default_flow_style=True, width=10**6).strip().removesuffix("...").strip()

@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
+import math
 from collections import Counter
 from collections.abc import Iterable
 from functools import cached_property
 
 from .. import features, names
 from .lines import SPLIT
-from ..parameters import ParameterType
+from ..parameters import INT_RANGE, ParameterType
 
 _SCALARS = {"bool": "bool", "int": "int64_t", "double": "double", "string": "std::string"}
 
@@ -43,6 +44,18 @@ def include_block(headers: Iterable[str]) -> str:
     return "\n\n".join(blocks)
 
 
+def number(value: int | float) -> str:
+    """An integer or double literal; C++ has no literal for INT64_MIN (its magnitude overflows int64_t).
+
+    Non-finite doubles have no literal either, and the answers refuse them (rna.parameters).
+    """
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            raise ValueError(f"no C++ literal for {value}: parameters take finite doubles")
+        return repr(value)
+    return "(-9223372036854775807 - 1)" if value == INT_RANGE[0] else str(value)
+
+
 def literal(value: object, ptype: ParameterType, scalars: dict[str, str] = _SCALARS) -> str:
     """A C++ expression of the parameter type's C++ type."""
     if ptype.is_array:
@@ -51,9 +64,9 @@ def literal(value: object, ptype: ParameterType, scalars: dict[str, str] = _SCAL
     if ptype.scalar == "bool":
         return "true" if value else "false"
     if ptype.scalar == "int":
-        return str(value)
+        return number(int(value))
     if ptype.scalar == "double":
-        return repr(float(value))
+        return number(float(value))
     return string(value)
 
 

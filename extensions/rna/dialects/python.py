@@ -7,6 +7,7 @@ sorted by module, as in ros2/examples).
 
 from __future__ import annotations
 
+import math
 import sys
 import textwrap
 from collections import Counter, defaultdict
@@ -56,7 +57,8 @@ def literal(value: object, split: bool = False) -> str:
     if isinstance(value, bool):
         return "True" if value else "False"
     if isinstance(value, float):
-        return repr(value)
+        # repr() spells infinity and NaN as names Python does not define.
+        return repr(value) if math.isfinite(value) else f"float('{value}')"
     if isinstance(value, int):
         return str(value)
     if isinstance(value, str):

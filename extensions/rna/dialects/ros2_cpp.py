@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from .. import names
-from .cpp import CppDialect
+from .cpp import CppDialect, number
 from .lines import BREAK
 
 # The CMake targets of the client libraries; other packages export ${<pkg>_TARGETS}.
@@ -77,9 +77,9 @@ class Ros2Cpp(CppDialect):
             low, high, step = parameter.range
             kind = parameter.range_kind
             lines += [f"{name}.{kind}.resize(1);",
-                      f"{name}.{kind}[0].from_value = {low!r};",
-                      f"{name}.{kind}[0].to_value = {high!r};",
-                      f"{name}.{kind}[0].step = {step!r};"]
+                      f"{name}.{kind}[0].from_value = {number(low)};",
+                      f"{name}.{kind}[0].to_value = {number(high)};",
+                      f"{name}.{kind}[0].step = {number(step)};"]
         return "\n    ".join(lines)
 
     @property
