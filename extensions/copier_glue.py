@@ -387,15 +387,27 @@ def _check_given_answers(context) -> None:
     Copier checks a choice, or parses a YAML answer, itself when it reaches the question,
     and a broken one ends in a traceback; this says the same in one line, first.
     """
-    given = (context.get("_copier_conf") or {}).get("data") or {}
+    conf = context.get("_copier_conf") or {}
+    given = conf.get("data") or {}
     key = json.dumps(given, sort_keys=True, default=str)
     if not given or key in _checked:
         return
     _checked.add(key)
     try:
-        rna.answers.check_given(given)
+        rna.answers.check_given(given, _question_types(str(conf.get("src_path"))))
     except rna.AnswerError as error:
         raise UserMessageError(f"rna-template: {error}") from None
+
+
+@functools.cache
+def _question_types(template: str) -> dict[str, str]:
+    """Each question's `type:` in the template's copier.yml (Copier casts given answers to it)."""
+    try:
+        questions = yaml.safe_load(Path(template, "copier.yml").read_text(encoding="utf-8"))
+    except (OSError, yaml.YAMLError):
+        return {}
+    return {name: spec.get("type", "str") for name, spec in questions.items()
+            if not name.startswith("_") and isinstance(spec, dict)}
 
 
 def _refuse_to_overwrite(package, context) -> None:

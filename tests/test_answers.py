@@ -5,9 +5,11 @@ from __future__ import annotations
 import copy
 
 import pytest
+import yaml
 from rna import AnswerError, Answers, build_package, question_error
+from rna.answers import check_given
 from rna.dialects import dialect
-from support.generation import VALID
+from support.generation import ROOT, VALID
 
 
 def answers(**changes):
@@ -297,3 +299,29 @@ def test_ros1_rules():
 def test_types_of_other_packages_and_newer_rolling_types_stay_allowed():
     build_package(node(publishers=["goals:nav_msgs/msg/Goals"]) | {"ros_distro": "rolling"})
     build_package(node(publishers=["x:my_robot_msgs/msg/Anything"]))
+
+
+# Each question's `type:` in copier.yml, as the glue reads it for check_given.
+QUESTION_TYPES = {name: spec.get("type", "str") for name, spec in
+                  yaml.safe_load((ROOT / "copier.yml").read_text()).items() if not name.startswith("_")}
+
+
+@pytest.mark.parametrize("value", [None, ["a list"], {"a": "mapping"}])
+@pytest.mark.parametrize("question", sorted(name for name, kind in QUESTION_TYPES.items() if kind == "str"))
+def test_given_text_answers_that_copier_cannot_cast_are_one_line(question, value):
+    """Copier casts a `type: str` answer given as data, and fails with a traceback on these."""
+    with pytest.raises(AnswerError) as caught:
+        check_given({question: value}, QUESTION_TYPES)
+    assert str(caught.value).startswith(f"invalid answer to '{question}': give text here, not ")
+
+
+@pytest.mark.parametrize("year", ["soon", "", None, [2026], 2026.5, True, 1969, 10000, "99999"])
+def test_a_given_year_that_is_not_one_is_one_line(year):
+    with pytest.raises(AnswerError, match="is not a year"):
+        check_given({"copyright_year": year}, QUESTION_TYPES)
+
+
+def test_given_answers_copier_casts_stay_accepted():
+    check_given({"copyright_year": "2031", "description": 12, "maintainer": "Ada", "nodes": [{"name": "a"}]},
+                QUESTION_TYPES)
+    assert build_package(answers(copyright_year="2031")).copyright_year == 2031

@@ -160,6 +160,13 @@ class Answers:
                    package="pkg", build_type=self.raw.get("build_type"),
                    types=Types(self.ros, distro=self.raw.get("ros_distro")))
 
+    def _copyright_year(self) -> int:
+        value = self.raw.get("copyright_year")
+        year = int(value) if isinstance(value, str) and value.strip().isdigit() else value  # --data gives text
+        if isinstance(year, bool) or not isinstance(year, int) or not 1970 <= year <= 9999:
+            raise ValueError(f"'{value}' is not a year")
+        return year
+
     def _node_name(self) -> None:
         error = names.node_name_error(self.raw.get("node_name"))
         if error:
@@ -199,9 +206,10 @@ class Answers:
         used = {dependency for node in read["nodes"] for dependency in node.dependencies} - {home}
         if package_name in used:
             raise AnswerError("package_name", f"'{package_name}' is the name of a package its nodes use")
-        year = self.raw.get("copyright_year")
-        if isinstance(year, bool) or not isinstance(year, int) or not 1970 <= year <= 9999:
-            raise AnswerError("copyright_year", f"'{year}' is not a year")
+        try:
+            year = self._copyright_year()
+        except ValueError as error:
+            raise AnswerError("copyright_year", str(error)) from None
         return Package(
             name=read["package_name"],
             description=read["description"],
@@ -253,14 +261,30 @@ _CHOICES = {
 }
 
 
-def check_given(given: Mapping) -> None:
+def _shape_error(value: object, question_type: str | None) -> str | None:
+    """Why Copier cannot cast an answer given as data to its question's type (copier.yml's `type:`)."""
+    if question_type == "str" and not isinstance(value, (str, int, float)):
+        shape = ("an empty answer" if value is None else "a list" if isinstance(value, list)
+                 else "a mapping" if isinstance(value, Mapping) else "a " + type(value).__name__)
+        return f"give text here, not {shape}"
+    return None
+
+
+def check_given(given: Mapping, types: Mapping[str, str] | None = None) -> None:
     """AnswerError for the first answer given on the command line that Copier would refuse.
 
-    A rule that depends on another answer is checked only when that one is given too: on
-    an update the others come from the answers file, which is not read here.
+    `types`: each question's `type:` in copier.yml; Copier casts a given answer to it, and
+    one it cannot cast ends in a traceback. A rule that depends on another answer is
+    checked only when that one is given too: on an update the others come from the answers
+    file, which is not read here.
     """
     for question, value in given.items():
         try:
+            shape = _shape_error(value, (types or {}).get(question))
+            if shape:
+                raise ValueError(shape)
+            if question == "copyright_year":
+                Answers(given).read(question)
             if question in _CHOICES and value not in _CHOICES[question]:
                 raise ValueError(f"'{value}' is not one of {', '.join(_CHOICES[question])}")
             if question in ("ros_distro", "license"):
