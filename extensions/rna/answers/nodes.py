@@ -70,6 +70,9 @@ def _parse_id(given: object, ros_name: str, what: str) -> str:
             raise ValueError(error)
         return str(given)
     derived = names.identifier_from_name(ros_name)
+    if not derived[:1].isalpha():  # '/_1/x' gives '1_x', and members like 1_x_publisher do not compile
+        raise ValueError(f"{what}: the code name derived from it, {names.quoted(derived)}, does not start with "
+                         "a letter: give the endpoint an `id`")
     if names.too_long(derived, names.IDENTIFIER_MAX):
         raise ValueError(f"{what}: the code name derived from it, {names.quoted(derived)}, is {len(derived)} "
                          f"characters long (at most {names.IDENTIFIER_MAX}): give the endpoint a shorter `id`")
