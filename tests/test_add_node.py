@@ -162,6 +162,19 @@ def test_the_added_node_grows_with_copier_update(template_dir, tmp_path):
     assert "<depend>geometry_msgs</depend>" in (package / "package.xml").read_text()
 
 
+def test_long_names_in_a_setup_py_fit_99_columns(tmp_path):
+    package = existing_packages.ament_python(tmp_path / "pkg")
+    name, node = "p" * 39, "n" * 39
+    model = build_package({**FIXED_ANSWERS, "package_name": name, "description": "d", "license": "MIT",
+                           "ros_distro": "jazzy", "build_type": "ament_python", "target": "node",
+                           "nodes": [{"name": node}]})
+    text, _ = integrate.setup_py((package / "setup.py").read_text(), model)
+    assert max(len(line) for line in text.splitlines()) <= 99
+    assert f"'{node} = '\n            '{name}.{node}:main'," in text
+    compile(text, "setup.py", "exec")
+    assert integrate.setup_py(text, model)[0] == text
+
+
 def test_a_name_whose_files_are_there_is_refused_at_the_name_question(tmp_path):
     """The clash is the node name prompt's own error (Copier's validator), wrapped to show whole."""
     package = existing_packages.ament_cmake(tmp_path / "pkg")

@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 import ast
+import textwrap
 
 import pytest
 
 from rna import wording
-from rna.dialects import cpp, lines, python
+from rna.dialects import Ros2Python, cpp, lines, python
+from rna.parameters import Parameter, ParameterType
 from rna.dialects.lines import ALTERNATIVE as A
 from rna.dialects.lines import BREAK as B
 from rna.dialects.lines import OPTIONAL as O
@@ -99,3 +101,18 @@ def test_prose_is_reflowed_with_its_comment_prefix():
 
 def test_markdown_cells_escape_pipes_and_html():
     assert wording.markdown_cell("a | b <c> & d") == "a \\| b &lt;c&gt; &amp; d"
+
+
+@pytest.mark.parametrize(("ptype", "value_range"), [
+    (ParameterType("double"), (-1.7976931348623157e308, 1.7976931348623157e308, 1.5e-300)),
+    (ParameterType("int"), (-2**63, 2**63 - 1, 1)),
+    (ParameterType("double"), (0.0, 1.0, 0.0)),
+])
+def test_a_python_range_descriptor_fits_99_columns_and_reads_back(ptype, value_range):
+    parameter = Parameter("gain", ptype, value_range[0], "A gain", value_range)
+    descriptor = Ros2Python.descriptor(parameter)
+    statement = f"        self.declare_parameter(\n            'gain', 0,\n            {descriptor})"
+    assert max(len(line) for line in statement.splitlines()) <= 99, statement
+    call = ast.parse(textwrap.dedent(statement)).body[0].value
+    bounds = call.args[2].keywords[-1].value.elts[0].keywords
+    assert tuple(ast.literal_eval(keyword.value) for keyword in bounds) == value_range

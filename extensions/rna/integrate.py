@@ -15,6 +15,7 @@ import re
 import xml.etree.ElementTree as ET
 
 from .dialects import dialect
+from .dialects.lines import BREAK, SPLIT, fit_line
 
 
 def _markers(comment: str, closing: str, node, indent: str = "") -> tuple[str, str]:
@@ -111,10 +112,12 @@ def catkin_cmake_lists(text: str, package) -> tuple[str, list[str]]:
 def setup_py(text: str, package) -> tuple[str, list[str]]:
     """The node's console script and config file, in an ament_python setup.py."""
     node = package.nodes[0]
-    entry = [f"            '{node.name} = {package.name}.{node.name}:main',"]
+    # Long names take two lines each, as the template's own setup.py spells them (flake8's 99 columns).
+    entry = fit_line(f"            '{node.name} = {SPLIT}{package.name}.{node.name}:main',", "python", inside=True)
     text = _put_block(text, _markers("#", "", node, " " * 12), entry,
                       re.compile(r"""['"]console_scripts['"]\s*:\s*\[\s*\n"""), separator="")
-    data = [f"        ('share/{package.name}/config', ['config/{node.name}.yaml']),"]
+    data = fit_line(f"        ('share/{package.name}/config',{BREAK} ['config/{node.name}.yaml']),", "python",
+                    inside=True)
     text = _put_block(text, _markers("#", " (config)", node, " " * 8), data,
                       re.compile(r"data_files\s*=\s*\[\s*\n"), separator="")
     return text, [f"setup.py: installs the {node.name} executable and config/{node.name}.yaml"]

@@ -38,7 +38,11 @@ class Ros2Python(PythonDialect):
         if parameter.range:
             low, high, step = (literal(value) for value in parameter.range)
             range_class = "IntegerRange" if parameter.range_kind == "integer_range" else "FloatingPointRange"
-            fields.append(f"{parameter.range_kind}=[\n{' ' * (indent + 8)}"
-                          f"{range_class}(from_value={low}, to_value={high}, step={step})]")
+            inner = " " * (indent + 8)
+            bounds = f"from_value={low}, to_value={high}, step={step}"
+            # The range ends the descriptor and the call: ')]))' must fit 99 columns too.
+            if len(inner) + len(range_class) + len(bounds) + 5 > 99:
+                bounds = f"\n{inner}    " + f",\n{inner}    ".join(bounds.split(", "))
+            fields.append(f"{parameter.range_kind}=[\n{inner}{range_class}({bounds})]")
         pad = " " * (indent + 4)
         return "ParameterDescriptor(\n" + ",\n".join(pad + field for field in fields) + ")"
