@@ -13,16 +13,33 @@ in tests/support/; test modules import only from there.
 
 from __future__ import annotations
 
+import os
 import sys
 from pathlib import Path
 
 import pytest
+from hypothesis import HealthCheck, Phase, settings
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from support.generation import ROOT, generate, snapshot_template  # noqa: E402
 
 sys.path.insert(0, str(ROOT / "extensions"))
+
+
+# Hypothesis (test_generative.py): the fast tier draws a few answer sets, the same ones on
+# every run, and reports a failure as drawn (shrinking would re-render packages for
+# minutes); HYPOTHESIS_PROFILE=thorough draws many, different each run, and shrinks.
+settings.register_profile(
+    "fast", max_examples=20, deadline=None, derandomize=True, database=None, print_blob=True,
+    phases=(Phase.explicit, Phase.reuse, Phase.generate),
+    suppress_health_check=(HealthCheck.too_slow, HealthCheck.filter_too_much, HealthCheck.data_too_large),
+)
+settings.register_profile(
+    "thorough", max_examples=500, deadline=None, print_blob=True,
+    suppress_health_check=(HealthCheck.too_slow, HealthCheck.filter_too_much, HealthCheck.data_too_large),
+)
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "fast"))
 
 
 def pytest_configure(config):

@@ -1,0 +1,167 @@
+"""Any valid answer set gives a package whose files read back right; any invalid one a one-line error (issue 8).
+
+Property-based: Hypothesis draws the answer sets (tests/support/strategies.py) and each
+one goes through Copier in-process, from a YAML data file as `copier copy --data-file`
+reads it. The profile (tests/conftest.py) keeps the fast tier to a few seconds and
+reproducible; HYPOTHESIS_PROFILE=thorough draws many more.
+"""
+
+from __future__ import annotations
+
+import ast
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import unicodedata
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import copier
+import pytest
+import yaml
+from catkin_pkg.package import parse_package
+from copier.errors import UserMessageError
+from hypothesis import example, given
+from rna import build_package
+from rna.parameters import INT_RANGE
+from support.generation import ROOT, TEMPLATE_ITEMS
+from support.strategies import invalid_answers, read_data_file, valid_answers, write_data_file
+
+
+@pytest.fixture(scope="module")
+def template(tmp_path_factory) -> Path:
+    """The template as a plain folder: Copier renders it in place, without cloning a repository each time."""
+    folder = tmp_path_factory.mktemp("plain_template")
+    for item in TEMPLATE_ITEMS:
+        source = ROOT / item
+        if source.is_dir():
+            shutil.copytree(source, folder / item, ignore=shutil.ignore_patterns("__pycache__"))
+        else:
+            shutil.copy2(source, folder / item)
+    return folder
+
+
+def copy(template: Path, destination: Path, answers: dict) -> None:
+    """`copier copy --data-file answers.yml --defaults --trust`, in-process."""
+    data = read_data_file(write_data_file(answers, destination.parent / "answers.yml"))
+    copier.run_copy(str(template), str(destination), data=data, defaults=True, unsafe=True, quiet=True)
+
+
+# ----------------------------------------------------------------------------- invalid answers
+
+@given(invalid_answers())
+def test_an_invalid_answer_set_is_refused_with_one_line_naming_the_question(template, case):
+    answers, question = case
+    with tempfile.TemporaryDirectory() as scratch:
+        destination = Path(scratch) / "out"
+        with pytest.raises(UserMessageError) as refused:
+            copy(template, destination, answers)
+        message = str(refused.value)
+        assert "\n" not in message
+        assert message.startswith(f"rna-template: invalid answer to '{question}': "), message
+        assert not destination.exists()
+
+
+# ----------------------------------------------------------------------------- valid answers
+
+def extreme_numbers(distro: str, build_type: str, language: str) -> dict:
+    """Numbers at the edges; `1e+308` in a config file is a string to YAML 1.1 (PyYAML, rosparam)."""
+    parameters = {"huge": ("double", 1e308), "tiny": ("double", 1e-06), "gains": ("double[]", [1e16, -5e-324]),
+                  "lowest": ("int", INT_RANGE[0]), "ranged": ("double", 1e300)}
+    answers = [{"name": name, "type": ptype, "default": default} for name, (ptype, default) in parameters.items()]
+    answers[-1]["range"] = [-1e308, 1e308]
+    return {"package_name": "extremes", "description": "Extreme numbers", "maintainer": "Ada",
+            "maintainer_email": "ada@example.com", "license": "MIT", "copyright_holder": "Ada",
+            "copyright_year": 2026, "ros_distro": distro, "build_type": build_type,
+            "nodes": [{"name": "edge", "language": language, "parameters": answers}],
+            "_expected": {"edge": parameters}}
+
+
+@given(valid_answers())
+@example(extreme_numbers("jazzy", "ament_cmake", "cpp"))
+@example(extreme_numbers("humble", "ament_python", "python"))
+@example(extreme_numbers("noetic", "catkin", "python"))
+def test_a_valid_answer_set_gives_files_that_read_back(template, answers):
+    answers = dict(answers)
+    expected = answers.pop("_expected")
+    model = build_package(answers)
+    with tempfile.TemporaryDirectory() as scratch:
+        destination = Path(scratch) / "out"
+        copy(template, destination, answers)
+        package = destination / model.name
+        files = [path for path in destination.rglob("*") if path.is_file()]
+
+        python = []
+        for path in files:
+            if path.suffix == ".py" or path.parent.name == "scripts":
+                tree = ast.parse(compile(path.read_text(encoding="utf-8"), str(path), "exec", ast.PyCF_ONLY_AST))
+                check_python_parameters(tree, expected, path)
+                python.append(path)
+            elif path.suffix in (".xml", ".launch"):
+                ET.parse(path)
+            elif path.suffix in (".yaml", ".yml"):
+                yaml.safe_load(path.read_text(encoding="utf-8"))
+            elif path.suffix in (".cpp", ".hpp", ".h"):
+                check_cpp_lines(path)
+        parse_package(str(package / "package.xml")).validate()
+        manifest = ET.parse(package / "package.xml").getroot()  # catkin_pkg gives the description as XML
+        assert (manifest.findtext("description"), manifest.findtext("maintainer"),
+                manifest.find("maintainer").get("email")) == (model.description, model.maintainer,
+                                                              model.maintainer_email)
+        lint_python(python)
+
+        for node in model.nodes:
+            config = yaml.safe_load((package / node.config_file).read_text(encoding="utf-8"))
+            loaded = config if model.ros == 1 else config["/**"]["ros__parameters"]
+            assert set(loaded or {}) == set(expected[node.name]), node.config_file
+            for name, (ptype, default) in expected[node.name].items():
+                assert_same_value(loaded[name], default, f"{node.config_file}: {name} ({ptype})")
+
+
+
+def assert_same_value(loaded: object, default: object, where: str) -> None:
+    """The value read back has the default's type, element by element: int stays int, double float."""
+    if isinstance(default, list):
+        assert isinstance(loaded, list) and len(loaded) == len(default), where
+        for item, wanted in zip(loaded, default, strict=True):
+            assert_same_value(item, wanted, where)
+        return
+    assert type(loaded) is type(default), f"{where}: {loaded!r} read back as {type(loaded).__name__}"
+    assert loaded == default, f"{where}: {loaded!r} != {default!r}"
+
+
+def check_python_parameters(tree: ast.AST, expected: dict, path: Path) -> None:
+    """Each default in declare_parameter() (ROS 2) or rospy.get_param() (ROS 1) reads back as the answer's."""
+    wanted = expected.get(path.stem.removesuffix("_base"), {})
+    for call in ast.walk(tree):
+        if (isinstance(call, ast.Call) and isinstance(call.func, ast.Attribute)
+                and call.func.attr in ("declare_parameter", "get_param") and len(call.args) >= 2):
+            name = ast.literal_eval(call.args[0]).lstrip("~")
+            assert_same_value(ast.literal_eval(call.args[1]), wanted[name][1], f"{path.name}: {name}")
+
+
+def lint_python(files: list[Path]) -> None:
+    """ruff's pyflakes rules, syntax errors, invalid escapes, and ament_flake8's 99 columns."""
+    if not files:
+        return
+    result = subprocess.run([sys.executable, "-m", "ruff", "check", "--no-cache", "--isolated", "--line-length", "99",
+                             "--select", "F,E9,E501,W291,W293,W6", *map(str, files)], capture_output=True, text=True)
+    assert result.returncode == 0, result.stdout + result.stderr
+
+
+def check_cpp_lines(path: Path) -> None:
+    """What ament_cpplint and GCC's -Wall see line by line: 100 columns, and comments that end where they seem to."""
+    for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+        where = f"{path.name}:{number}: {line}"
+        # cpplint counts East Asian wide characters as two columns, combining ones as none.
+        width = sum(2 if unicodedata.east_asian_width(c) in "WF" else 0 if unicodedata.combining(c) else 1
+                    for c in line)
+        assert width <= 100, where
+        assert line == line.rstrip(), where
+        comment = line.partition("//")[2] if line.lstrip().startswith("//") else ""
+        assert not comment.endswith(("\\", "??/")), where  # a comment continued onto the next line
+        # A literal whose magnitude does not fit int64_t, and timers that would never wait.
+        assert "-9223372036854775808" not in line, where
+        assert not re.search(r"std::chrono::\w+\(0\)|ros::Duration\(0(\.0)?\)", line), where
