@@ -76,6 +76,7 @@ BROKEN = [
     (node(publishers=[{"topic": "a", "type": "std_msgs/msg/String", "qos": True}]), "nodes",
      "qos must be a history depth"),
     (node(timers=[0]), "nodes", "more than 0 s"),
+    (node(timers=[1e-10]), "nodes", "shorter than a nanosecond"),
     (node(timers=[{"name": "Fast", "period": 1}]), "nodes", "lower_snake_case"),
     (node(timers=[0.1, 0.2]), "nodes", "both use the name 'timer'"),
     (node(parameters=["Rate:double=1.0"]), "nodes", "lower_snake_case"),
@@ -99,6 +100,9 @@ BROKEN = [
     (node(parameters=[{"name": "r", "default": 5, "range": [0, 1]}]), "nodes", "outside the range"),
     (node(parameters=[{"name": "r", "default": 0, "range": [2, 1]}]), "nodes", "above its maximum"),
     (node(parameters=[{"name": "r", "default": 1, "range": [0, 1.5]}]), "nodes", "whole-number"),
+    (node(parameters=[{"name": "r", "default": 5, "range": [0, 10, 3]}]), "nodes",
+     "default 5 is not the minimum 0 plus a whole number of steps of 3"),
+    (node(parameters=[{"name": "r", "default": 0.25, "range": [0.0, 1.0, 0.1]}]), "nodes", "whole number of steps"),
     (node(parameters=[{"name": "r", "default": 1, "read_only": "no"}]), "nodes", "true or false"),
     (node(parameters=["rate=1.0", "rate=2.0"]), "nodes", "both use the name 'rate'"),
     # Answers that passed the rules but broke the build or the run (issue 8).
@@ -122,6 +126,10 @@ BROKEN = [
     (node(parameters=[{"name": "big", "default": 2**63}]), "nodes", "64-bit integer"),
     (node(parameters=[{"name": "big", "type": "int[]", "default": [1, -2**63 - 1]}]), "nodes", "64-bit integer"),
     (node(parameters=[{"name": "r", "default": 1, "range": [0, 2**64]}]), "nodes", "64-bit integer"),
+    (answers(ros_distro="noetic", build_type="catkin", nodes=[{"name": "a", "parameters": ["big=2147483648"]}]),
+     "nodes", "does not fit a 32-bit integer (ROS 1's parameter server)"),
+    (answers(ros_distro="noetic", build_type="catkin",
+             nodes=[{"name": "a", "parameters": ["big:int[]=[-2147483649]"]}]), "nodes", "32-bit integer"),
     (node(parameters=[{"name": "r", "default": "x", "description": "two\nlines"}]), "nodes", "printable"),
     (node(publishers=["/" + "a" * 80 + ":std_msgs/msg/String"]), "nodes", "at most 80"),
     (node(publishers=[{"topic": "a", "type": "std_msgs/msg/String", "id": "b" * 51}]), "nodes", "at most 50"),
@@ -327,3 +335,4 @@ def test_given_answers_copier_casts_stay_accepted():
     check_given({"copyright_year": "2031", "description": 12, "maintainer": "Ada", "nodes": [{"name": "a"}]},
                 QUESTION_TYPES)
     assert build_package(answers(copyright_year="2031")).copyright_year == 2031
+

@@ -10,7 +10,7 @@ from rna import configs, names
 from rna.dialects import Ros1Cpp, Ros1Python, Ros2Cpp, Ros2Python, cpp, python
 from rna.interfaces import InterfaceType, parse_interface
 from rna.licenses import LICENSES
-from rna.parameters import ParameterType, coerce_default, infer_type, parse_type
+from rna.parameters import ParameterType, coerce_default, infer_type, on_step, parse_type
 
 
 @pytest.mark.parametrize("name", ["turtlesim", "my_robot2", "a1", "target_tracking"])
@@ -246,3 +246,12 @@ def test_long_python_text_is_split_to_fit():
     lines = long.splitlines()
     assert lines[0] == "(" and all(len(line) <= 99 for line in lines)
     assert eval(long) == "word " * 40  # noqa: S307 - our own literal
+
+
+@pytest.mark.parametrize(("value", "low", "high", "step", "scalar", "taken"), [
+    (6, 0, 10, 3, "int", True), (5, 0, 10, 3, "int", False), (10, 0, 10, 3, "int", True), (5, 0, 10, 0, "int", True),
+    (0.3, 0.0, 1.0, 0.1, "double", True), (0.25, 0.0, 1.0, 0.1, "double", False), (1.0, 0.0, 1.0, 0.3, "double", True),
+    (1e308, -1e308, 1e308, 1e-300, "double", True),  # rclcpp's arithmetic overflows to infinity, and takes it
+])
+def test_ros2_takes_a_ranged_value_on_a_step_only(value, low, high, step, scalar, taken):
+    assert on_step(value, low, high, step, scalar) is taken

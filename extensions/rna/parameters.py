@@ -4,11 +4,14 @@ from __future__ import annotations
 
 import json
 import math
+import sys
 from dataclasses import dataclass
 
 SCALAR_TYPES = ("bool", "int", "double", "string")
-# ROS parameters hold 64-bit integers (rcl_interfaces ParameterValue.integer_value).
-INT_RANGE = (-2**63, 2**63 - 1)
+# ROS 2 parameters hold 64-bit integers (rcl_interfaces ParameterValue.integer_value); ROS 1's
+# parameter server speaks XML-RPC, whose integers have 32 bits (rospy refuses larger ones).
+INT_RANGES = {2: (-2**63, 2**63 - 1), 1: (-2**31, 2**31 - 1)}
+INT_RANGE = INT_RANGES[2]
 TYPE_ALIASES = {"integer": "int", "float": "double", "str": "string", "boolean": "bool"}
 
 
@@ -71,14 +74,16 @@ def infer_type(value: object) -> ParameterType:
     raise ValueError(f"cannot tell the type of the default {spelled(value)}: add `type:`")
 
 
-def _coerce_scalar(value: object, scalar: str) -> object:
+def _coerce_scalar(value: object, scalar: str, ros: int) -> object:
     if scalar == "bool":
         if isinstance(value, bool):
             return value
     elif scalar == "int":
         if isinstance(value, int) and not isinstance(value, bool):
-            if not INT_RANGE[0] <= value <= INT_RANGE[1]:
-                raise ValueError(f"default {value} does not fit a 64-bit integer")
+            low, high = INT_RANGES[ros]
+            if not low <= value <= high:
+                where = " (ROS 1's parameter server)" if ros == 1 else ""
+                raise ValueError(f"default {value} does not fit a {high.bit_length() + 1}-bit integer{where}")
             return value
     elif scalar == "double":
         if isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value):
@@ -91,15 +96,34 @@ def _coerce_scalar(value: object, scalar: str) -> object:
     raise ValueError(f"default {spelled(value)} is not {'an' if scalar == 'int' else 'a'} {scalar}")
 
 
-def coerce_default(value: object, ptype: ParameterType) -> object:
-    """Check a default against its type; ints are accepted for doubles."""
+def coerce_default(value: object, ptype: ParameterType, ros: int = 2) -> object:
+    """Check a default against its type for a ROS generation; ints are accepted for doubles."""
     if value is None:
         return [] if ptype.is_array else {"bool": False, "int": 0, "double": 0.0, "string": ""}[ptype.scalar]
     if ptype.is_array:
         if not isinstance(value, list):
             raise ValueError(f"default {spelled(value)} is not a list, but the type is {ptype}")
-        return [_coerce_scalar(item, ptype.scalar) for item in value]
-    return _coerce_scalar(value, ptype.scalar)
+        return [_coerce_scalar(item, ptype.scalar, ros) for item in value]
+    return _coerce_scalar(value, ptype.scalar, ros)
+
+
+def on_step(value: float, low: float, high: float, step: float, scalar: str) -> bool:
+    """Whether ROS 2 takes `value` in a range with a step: a bound, or the minimum plus a whole number of steps.
+
+    rclcpp and rclpy refuse any other value, the default included, so declare_parameter()
+    would throw at start-up. Doubles count as equal within 100 ulp, as rclcpp compares them.
+    """
+    if not step:
+        return True
+    if scalar == "int":
+        return value in (low, high) or (value - low) % step == 0
+
+    def close(x: float, y: float) -> bool:
+        return abs(x - y) <= sys.float_info.epsilon * abs(x + y) * 100
+
+    steps = (value - low) / step
+    return close(value, low) or close(value, high) or close(value, low + (round(steps) if math.isfinite(steps)
+                                                                           else steps) * step)
 
 
 @dataclass(frozen=True)

@@ -64,7 +64,7 @@ def _parameter() -> dict:
         {"type": "object", "required": ["name"], "additionalProperties": False, "properties": {
             "name": _name(_anchored(names.SNAKE_CASE), names.IDENTIFIER_MAX, "the parameter's name"),
             "type": {"type": "string", "examples": types},
-            "default": {"description": "a value of the type (int: 64-bit)"},
+            "default": {"description": "a value of the type (int: 64-bit; ROS 1: 32-bit)"},
             "description": _text("what the parameter does"),
             "range": {"oneOf": [{"type": "array", "minItems": 2, "maxItems": 3, "items": {"type": "number"}},
                                 {"type": "object", "additionalProperties": False,
@@ -75,10 +75,10 @@ def _parameter() -> dict:
 
 
 def _node() -> dict:
-    timer = {"oneOf": [{"type": "number", "exclusiveMinimum": 0, "maximum": 86400}, {"type": "string"},
+    timer = {"oneOf": [{"type": "number", "minimum": 1e-9, "maximum": 86400}, {"type": "string"},
                        {"type": "object", "required": ["period"], "additionalProperties": False, "properties": {
                            "name": _name(_anchored(names.SNAKE_CASE), names.IDENTIFIER_MAX, "the timer's name"),
-                           "period": {"type": "number", "exclusiveMinimum": 0, "maximum": 86400}}}]}
+                           "period": {"type": "number", "minimum": 1e-9, "maximum": 86400}}}]}
     node = {
         "type": "object",
         "required": ["name"],

@@ -17,7 +17,7 @@ import yaml
 from .. import catalogue, distros, names
 from ..interfaces import InterfaceType, parse_interface
 from ..model import BASE_MEMBERS, Action, Node, Qos, Service, Timer, Topic
-from ..parameters import INT_RANGE, Parameter, ParameterType, coerce_default, infer_type, parse_type
+from ..parameters import INT_RANGE, Parameter, ParameterType, coerce_default, infer_type, on_step, parse_type
 from ..shapes import as_list, check_keys, load_yaml
 
 QOS_PROFILES = {"sensor_data": 5}
@@ -137,6 +137,8 @@ def _parse_timer(item: object) -> Timer:
         raise ValueError(f"timer '{name}': period '{period}' is not a number of seconds") from None
     if not 0 < period <= 86400:
         raise ValueError(f"timer '{name}': period must be more than 0 s and at most a day")
+    if period < 1e-9:  # the generated code counts nanoseconds: a shorter period is a timer that never waits
+        raise ValueError(f"timer '{name}': period {period} s is shorter than a nanosecond, what ROS timers count in")
     return Timer(name, period)
 
 
@@ -171,7 +173,7 @@ def _parse_parameter(item: object, ros: int) -> Parameter:
             ptype = infer_type(item["default"])
         else:
             raise ValueError("give a type or a default")
-        default = coerce_default(item.get("default"), ptype)
+        default = coerce_default(item.get("default"), ptype, ros)
     except ValueError as error:
         raise ValueError(f"{what}: {error}") from None
     if ptype.is_array and not default:
@@ -182,11 +184,11 @@ def _parse_parameter(item: object, ros: int) -> Parameter:
     read_only = item.get("read_only", False)
     if not isinstance(read_only, bool):
         raise ValueError(f"{what}: read_only must be true or false")
-    value_range = _parse_range(item.get("range"), ptype, default, what)
+    value_range = _parse_range(item.get("range"), ptype, default, what, ros)
     return Parameter(name, ptype, default, description.strip(), value_range, read_only)
 
 
-def _parse_range(value: object, ptype: ParameterType, default: object, what: str):
+def _parse_range(value: object, ptype: ParameterType, default: object, what: str, ros: int):
     if value is None:
         return None
     if not ptype.is_numeric:
@@ -213,6 +215,9 @@ def _parse_range(value: object, ptype: ParameterType, default: object, what: str
         raise ValueError(f"{what}: range step must not be negative")
     if not low <= default <= high:
         raise ValueError(f"{what}: default {default} is outside the range [{low}, {high}]")
+    if ros == 2 and not on_step(default, low, high, step, ptype.scalar):  # ROS 1 ranges are comments
+        raise ValueError(f"{what}: default {default} is not the minimum {low} plus a whole number of steps of "
+                         f"{step}, which ROS 2 refuses at start-up")
     cast = int if ptype.scalar == "int" else float
     return (cast(low), cast(high), cast(step))
 
