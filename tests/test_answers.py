@@ -336,3 +336,12 @@ def test_given_answers_copier_casts_stay_accepted():
                 QUESTION_TYPES)
     assert build_package(answers(copyright_year="2031")).copyright_year == 2031
 
+
+def test_an_empty_ros1_python_base_class_imports_nothing_it_does_not_use():
+    def base_imports(**fields):
+        package = build_package(answers(ros_distro="noetic", build_type="catkin",
+                                        nodes=[{"name": "a", "language": "python", **fields}]))
+        return dialect(package.nodes[0]).base_imports
+
+    assert "rospy" not in base_imports()
+    assert base_imports(timers=[1]) == "import rospy"

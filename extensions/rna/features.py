@@ -24,6 +24,7 @@ def node_features(node) -> frozenset[str]:
     parameters = node.parameters
     found = {
         "node": True,
+        "members": bool(node.parameters or node.endpoints),  # a ROS 1 base class without them is empty
         "lifecycle": node.lifecycle,
         "plain": not node.lifecycle,
         "component": node.component,
@@ -87,7 +88,8 @@ ROS1_CPP = {
 }
 
 ROS1_PYTHON = {
-    "node": Needs(("rospy",), ("rospy",), ("rospy", "signal")),  # signal: main() holds Ctrl-C in start-up
+    "node": Needs(("rospy",), user=("rospy", "signal")),  # signal: main() holds Ctrl-C in start-up
+    "members": Needs(base=("rospy",)),
     "actions": Needs(("actionlib", "actionlib_msgs")),
     "action_servers": Needs(base=("actionlib:SimpleActionServer",)),
     "action_clients": Needs(base=("actionlib:SimpleActionClient",), user=("actionlib_msgs.msg:GoalStatus",)),
