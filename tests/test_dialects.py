@@ -116,3 +116,17 @@ def test_a_python_range_descriptor_fits_99_columns_and_reads_back(ptype, value_r
     call = ast.parse(textwrap.dedent(statement)).body[0].value
     bounds = call.args[2].keywords[-1].value.elts[0].keywords
     assert tuple(ast.literal_eval(keyword.value) for keyword in bounds) == value_range
+
+
+LONG_WORD = "https://example.com/" + "a-very-long-path/" * 6 + "\xa0\u00e9?" * 12
+
+
+def test_a_long_word_may_be_cut_too_never_inside_an_escape():
+    statement = f"        description={python.literal(LONG_WORD, split=True)},"
+    fitted = lines.fit(statement, "python")
+    assert max(len(line) for line in fitted.splitlines()) <= 99
+    assert ast.literal_eval("(" + fitted.strip().removeprefix("description=").rstrip(",") + ")") == LONG_WORD
+    cpp_statement = lines.fit(f"    descriptor.description ={B} {cpp.string(LONG_WORD + '??=', split=True)};", "cpp")
+    assert max(len(line) for line in cpp_statement.splitlines()) <= 100
+    assert "??" not in cpp_statement.replace("?\\?", "")  # no trigraph across a cut either
+    assert python.literal(LONG_WORD, split=True).replace(S, "") == python.literal(LONG_WORD)

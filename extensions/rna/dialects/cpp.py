@@ -8,7 +8,7 @@ from collections.abc import Iterable
 from functools import cached_property
 
 from .. import features, names
-from .lines import SPLIT
+from .lines import splittable
 from ..parameters import INT_RANGE, ParameterType
 
 _SCALARS = {"bool": "bool", "int": "int64_t", "double": "double", "string": "std::string"}
@@ -79,21 +79,21 @@ def string(text: str, split: bool = False) -> str:
     Control characters become octal escapes (a hex escape would swallow the digits that
     follow), and '?' is escaped after another '?' so no trigraph forms (GCC warns).
     """
-    out = []
+    spelled, previous = [], ""
     for char in text:
         if char in _CPP_ESCAPES:
-            out.append(_CPP_ESCAPES[char])
+            spelled.append((char, _CPP_ESCAPES[char]))
         elif ord(char) < 0x20 or ord(char) == 0x7F:
-            out.append(f"\\{ord(char):03o}")
+            spelled.append((char, f"\\{ord(char):03o}"))
         elif not char.isprintable():
-            out.append(f"\\u{ord(char):04x}" if ord(char) < 0x10000 else f"\\U{ord(char):08x}")
-        elif char == "?" and out and out[-1] in ("?", "\\?"):
-            out.append("\\?")
-        elif char == " " and split:
-            out.append(" " + SPLIT)
+            spelled.append((char, f"\\u{ord(char):04x}" if ord(char) < 0x10000 else f"\\U{ord(char):08x}"))
+        elif char == "?" and previous == "?":  # also across a place the literal may be cut
+            spelled.append((char, "\\?"))
         else:
-            out.append(char)
-    return '"' + "".join(out) + '"'
+            spelled.append((char, char))
+        previous = char
+    inside = splittable(spelled) if split else "".join(spelling for _, spelling in spelled)
+    return '"' + inside + '"'
 
 
 class CppDialect:

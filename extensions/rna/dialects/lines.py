@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import re
 import textwrap
+from collections.abc import Iterable
 
 # Private-use characters: no text reaches the output raw with them (rna.names refuses
 # them in free text and the dialects escape them in literals), and unlike the ASCII
@@ -28,6 +29,9 @@ OPTIONAL = "\ue002"
 OPTIONAL_END = "\ue003"
 ALTERNATIVE = "\ue004"
 
+# Columns of a word without spaces (a URL, a path) between the places a literal may be cut.
+WORD_PIECE = 30
+
 # (column limit, continuation indent) of the linters each language is checked with:
 # ament_cpplint / ament_uncrustify (100 columns) and ament_flake8 (99).
 LIMITS = {"cpp": (100, 2), "python": (99, 4)}
@@ -35,6 +39,19 @@ LIMITS = {"cpp": (100, 2), "python": (99, 4)}
 _OPTIONAL_WORDS = re.compile(
     f"{OPTIONAL}[^{OPTIONAL_END}{ALTERNATIVE}]*(?:{ALTERNATIVE}([^{OPTIONAL_END}]*))?{OPTIONAL_END}")
 _PREFIX = re.compile(r"[A-Za-z]*$")
+
+
+def splittable(spelled: Iterable[tuple[str, str]]) -> str:
+    """A string literal's inside from (character, its escaped spelling) pairs, with a SPLIT
+    after each space and, in a longer word, every WORD_PIECE columns (never inside an escape)."""
+    out, run = [], 0
+    for char, spelling in spelled:
+        out.append(spelling)
+        run = 0 if char == " " else run + len(spelling)
+        if char == " " or run >= WORD_PIECE:
+            out.append(SPLIT)
+            run = 0
+    return "".join(out)
 
 
 def _open_literal(text: str) -> tuple[str, str]:

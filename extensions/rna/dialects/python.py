@@ -15,7 +15,7 @@ from collections.abc import Iterable
 from functools import cached_property
 
 from .. import features, names
-from .lines import SPLIT
+from .lines import splittable
 
 # Names the generated Python files import or define besides interface types.
 RESERVED = frozenset({
@@ -64,8 +64,9 @@ def literal(value: object, split: bool = False) -> str:
     if isinstance(value, str):
         # flake8-quotes: single quotes, unless the text holds some and no double ones.
         quote = '"' if "'" in value and '"' not in value else "'"
-        inside = _escape(value, quote)
-        return quote + (inside.replace(" ", " " + SPLIT) if split else inside) + quote
+        if split:
+            return quote + splittable((char, _escape(char, quote)) for char in value) + quote
+        return quote + _escape(value, quote) + quote
     if isinstance(value, list):
         return "[" + ", ".join(literal(item) for item in value) + "]"
     raise TypeError(f"no Python literal for {value!r}")
