@@ -344,4 +344,5 @@ def test_an_empty_ros1_python_base_class_imports_nothing_it_does_not_use():
         return dialect(package.nodes[0]).base_imports
 
     assert "rospy" not in base_imports()
+    assert "rospy" not in base_imports(action_clients=["dock:actionlib/action/Test"])
     assert base_imports(timers=[1]) == "import rospy"

@@ -24,7 +24,8 @@ def node_features(node) -> frozenset[str]:
     parameters = node.parameters
     found = {
         "node": True,
-        "members": bool(node.parameters or node.endpoints),  # a ROS 1 base class without them is empty
+        # What rospy's own calls wire up in a ROS 1 base class (an action client is actionlib's alone).
+        "rospy_wiring": bool(node.parameters or set(node.endpoints) - set(node.action_clients)),
         "lifecycle": node.lifecycle,
         "plain": not node.lifecycle,
         "component": node.component,
@@ -89,7 +90,7 @@ ROS1_CPP = {
 
 ROS1_PYTHON = {
     "node": Needs(("rospy",), user=("rospy", "signal")),  # signal: main() holds Ctrl-C in start-up
-    "members": Needs(base=("rospy",)),
+    "rospy_wiring": Needs(base=("rospy",)),
     "actions": Needs(("actionlib", "actionlib_msgs")),
     "action_servers": Needs(base=("actionlib:SimpleActionServer",)),
     "action_clients": Needs(base=("actionlib:SimpleActionClient",), user=("actionlib_msgs.msg:GoalStatus",)),
