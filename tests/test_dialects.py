@@ -130,3 +130,10 @@ def test_a_long_word_may_be_cut_too_never_inside_an_escape():
     assert max(len(line) for line in cpp_statement.splitlines()) <= 100
     assert "??" not in cpp_statement.replace("?\\?", "")  # no trigraph across a cut either
     assert python.literal(LONG_WORD, split=True).replace(S, "") == python.literal(LONG_WORD)
+
+
+def test_a_qualified_name_continues_at_the_same_indent_in_cpp():
+    """uncrustify keeps `&Class::` and the member it names at one indent when it breaks between them."""
+    line = f'      "s",{B} &{"C" * 45}Base::{B}on_{"i" * 40}_request,{B} this);'
+    assert lines.fit_line(line, "cpp", inside=True) == [
+        '      "s",', f'      &{"C" * 45}Base::', f'      on_{"i" * 40}_request, this);']
