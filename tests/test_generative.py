@@ -72,6 +72,7 @@ def extreme_numbers(distro: str, build_type: str, language: str) -> dict:
                   "lowest": ("int", INT_RANGES[distros.generation(distro)][0]), "ranged": ("double", 1e300)}
     answers = [{"name": name, "type": ptype, "default": default} for name, (ptype, default) in parameters.items()]
     answers[-1]["range"] = [-1e308, 1e308]
+    answers[-2]["range"] = [parameters["lowest"][1], 0]
     return {"package_name": "extremes", "description": "Extreme numbers", "maintainer": "Ada",
             "maintainer_email": "ada@example.com", "license": "MIT", "copyright_holder": "Ada",
             "copyright_year": 2026, "ros_distro": distro, "build_type": build_type,
@@ -79,10 +80,28 @@ def extreme_numbers(distro: str, build_type: str, language: str) -> dict:
             "_expected": {"edge": parameters}}
 
 
+def longest_names(distro: str, build_type: str, language: str) -> dict:
+    """Names at their longest, and a description with a long word: lines that overflowed before."""
+    url = "https://example.com/" + "a-very-long-path/" * 6
+    node = {"name": "n" * 39, "language": language, "description": f"See {url}", "timers": [1e-9],
+            "service_servers": [{"name": "/" + "s" * 79, "type": "std_srvs/srv/Trigger", "id": "reset"}],
+            "action_clients": [{"name": "a" * 80, "type": "test_msgs/action/Fibonacci", "id": "fib"}],
+            "publishers": ["p" * 40 + ":std_msgs/msg/String", "q" * 40 + ":std_msgs/msg/String"],
+            "parameters": [{"name": "x" * 40, "default": 1.0, "description": url,
+                            "range": [-1.7976931348623157e308, 1.7976931348623157e308, 1e-300]}]}
+    return {"package_name": "p" * 33 if language == "cpp" else "p" * 39, "description": url,
+            "maintainer": "Ada", "maintainer_email": "a" * 60 + "@" + "b" * 60 + ".org", "license": "MIT",
+            "copyright_holder": "Ada", "copyright_year": 2026, "ros_distro": distro, "build_type": build_type,
+            "nodes": [node], "_expected": {node["name"]: {"x" * 40: ("double", 1.0)}}}
+
+
 @given(valid_answers())
 @example(extreme_numbers("jazzy", "ament_cmake", "cpp"))
 @example(extreme_numbers("humble", "ament_python", "python"))
 @example(extreme_numbers("noetic", "catkin", "python"))
+@example(longest_names("jazzy", "ament_python", "python"))
+@example(longest_names("jazzy", "ament_cmake", "cpp"))
+@example(longest_names("noetic", "catkin", "python"))
 def test_a_valid_answer_set_gives_files_that_read_back(template, answers):
     answers = dict(answers)
     expected = answers.pop("_expected")
@@ -96,8 +115,9 @@ def test_a_valid_answer_set_gives_files_that_read_back(template, answers):
         python = []
         for path in files:
             if path.suffix == ".py" or path.parent.name == "scripts":
-                tree = ast.parse(compile(path.read_text(encoding="utf-8"), str(path), "exec", ast.PyCF_ONLY_AST))
-                check_python_parameters(tree, expected, path)
+                source = path.read_text(encoding="utf-8")
+                compile(source, str(path), "exec")
+                check_python_parameters(ast.parse(source), expected, path)
                 python.append(path)
             elif path.suffix in (".xml", ".launch"):
                 ET.parse(path)
