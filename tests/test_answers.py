@@ -346,3 +346,13 @@ def test_an_empty_ros1_python_base_class_imports_nothing_it_does_not_use():
     assert "rospy" not in base_imports()
     assert "rospy" not in base_imports(action_clients=["dock:actionlib/action/Test"])
     assert base_imports(timers=[1]) == "import rospy"
+
+
+def test_one_package_s_message_and_service_of_one_name_get_two_names_in_code():
+    """nav_msgs has GetMap as a service and (ROS 1) an action: both in a node need names of their own."""
+    for language in ("python", "cpp"):
+        package = build_package(node(language=language, publishers=["a:my_msgs/msg/Goal"],
+                                     service_clients=["b:my_msgs/srv/Goal"], action_clients=["c:other/action/Goal"]))
+        names_in_code = dialect(package.nodes[0]).types if language == "python" else dialect(
+            package.nodes[0]).alias_names
+        assert sorted(names_in_code.values()) == ["MyMsgsMsgGoal", "MyMsgsSrvGoal", "OtherGoal"]

@@ -12,6 +12,7 @@ import keyword
 import re
 import sys
 import unicodedata
+from collections import Counter
 
 CPP_KEYWORDS = frozenset(
     """
@@ -238,6 +239,22 @@ def camel_to_snake(name: str) -> str:
 def snake_to_camel(name: str) -> str:
     """Class name for a node (target_detection -> TargetDetection)."""
     return "".join(part[:1].upper() + part[1:] for part in name.split("_"))
+
+
+def type_aliases(interfaces, taken) -> dict:
+    """interface type -> the name generated code calls it by: its own name (Odometry), or, when
+    another type or a name in `taken` has it, prefixed with its package's (NavMsgsOdometry), and
+    with its kind too when its package has it as two kinds (NavMsgsSrvGetMap, NavMsgsActionGetMap)."""
+    names = Counter(t.name for t in interfaces)
+    qualified = Counter((t.package, t.name) for t in interfaces)
+
+    def alias(t) -> str:
+        if names[t.name] == 1 and t.name not in taken:
+            return t.name
+        kind = t.kind.capitalize() if qualified[(t.package, t.name)] > 1 else ""
+        return snake_to_camel(t.package) + kind + t.name
+
+    return {t: alias(t) for t in interfaces}
 
 
 def identifier_from_name(name: str) -> str:

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-from collections import Counter
 from collections.abc import Iterable
 from functools import cached_property
 
@@ -116,10 +115,7 @@ class CppDialect:
     def _names(self, interfaces) -> dict:
         """interface -> the name its alias (or aliases' stem) takes in the node's classes."""
         node = self.node
-        taken = {node.class_name, node.base_class_name, *self.RESERVED}
-        counts = Counter(t.name for t in interfaces)
-        return {t: names.snake_to_camel(t.package) + t.name if counts[t.name] > 1 or t.name in taken else t.name
-                for t in interfaces}
+        return names.type_aliases(interfaces, {node.class_name, node.base_class_name, *self.RESERVED})
 
     @cached_property
     def alias_names(self) -> dict:

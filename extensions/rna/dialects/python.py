@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 import sys
 import textwrap
-from collections import Counter, defaultdict
+from collections import defaultdict
 from collections.abc import Iterable
 from functools import cached_property
 
@@ -146,12 +146,7 @@ class PythonDialect:
         imported helper is imported under its package's name: NavMsgsOdometry.
         """
         node = self.node
-        taken = {node.class_name, node.base_class_name, *RESERVED}
-        counts = Counter(t.name for t in node.interfaces)
-        return {
-            t: names.snake_to_camel(t.package) + t.name if counts[t.name] > 1 or t.name in taken else t.name
-            for t in node.interfaces
-        }
+        return names.type_aliases(node.interfaces, {node.class_name, node.base_class_name, *RESERVED})
 
     def type(self, interface) -> str:
         return self.types[interface]
