@@ -102,6 +102,7 @@ def longest_names(distro: str, build_type: str, language: str) -> dict:
 @example(longest_names("jazzy", "ament_python", "python"))
 @example(longest_names("jazzy", "ament_cmake", "cpp"))
 @example(longest_names("noetic", "catkin", "python"))
+@example(longest_names("noetic", "catkin", "cpp"))
 def test_a_valid_answer_set_gives_files_that_read_back(template, answers):
     answers = dict(answers)
     expected = answers.pop("_expected")
