@@ -118,6 +118,8 @@ BROKEN = [
     (answers(maintainer_email="ada@localhost"), "maintainer_email", "catkin_pkg"),
     (answers(copyright_holder="Lab\\"), "copyright_holder", "C++ comment"),
     (answers(nodes=[{"name": "n" * 40}]), "nodes", "at most 39"),
+    (answers(package_name="p" * 39, build_type="ament_cmake", nodes=[{"name": "n" * 35, "language": "cpp"}]),
+     "nodes", "74 characters together: a C++ node's have at most 73"),
     (node(description='Says """hello"""'), "nodes", "docstring"),
     (node(description="bell\a"), "nodes", "printable"),
     (node(parameters=["use_sim_time=true"]), "nodes", "declared by ROS 2 itself"),

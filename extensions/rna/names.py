@@ -35,10 +35,12 @@ CAMEL_CASE = re.compile(r"[A-Z][A-Za-z0-9]*")
 NAME_TOKEN = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 # Longest names, so that every line the template writes fits the 100 columns ROS's
-# linters allow: the C++ header guard <PACKAGE>__<NODE>_BASE_HPP_ after `#endif  // ` and
-# `from <package>.<node>_base import (` need package + node <= 78 characters.
+# linters allow: `from <package>.<node>_base import (` needs package + node <= 79 characters;
+# a ROS 2 C++ node's `std::make_shared<package::NodeClass>();` and its header guard
+# <PACKAGE>__<NODE>_BASE_HPP_ after `#endif  // ` need package + node <= 73.
 PACKAGE_NAME_MAX = 39
 NODE_NAME_MAX = 39
+CPP_PACKAGE_AND_NODE_MAX = 73
 ROS_NAME_MAX = 80  # topics, services, actions: a string literal on a continuation line
 IDENTIFIER_MAX = 50  # the code name of an endpoint, in members and callbacks
 TYPE_NAME_MAX = 50

@@ -295,6 +295,7 @@ def parse_node(item: object, *, package: str, build_type: str, types: Types) -> 
         )
         _check_node_names(node)
         _check_script_name(node)
+        _check_cpp_names(node)
     except ValueError as error:
         raise ValueError(f"{label}: {error}") from None
     return node
@@ -307,6 +308,14 @@ def _check_script_name(node: Node) -> None:
     imported = {node.package, *node.dependencies}
     if node.name in imported or node.name in sys.stdlib_module_names:
         raise ValueError(f"its script {node.executable} would shadow the Python module '{node.name}' it needs")
+
+
+def _check_cpp_names(node: Node) -> None:
+    """A ROS 2 C++ node's lines that hold both its package's name and its own fit 100 columns."""
+    together = len(node.package) + len(node.name)
+    if node.ros == 2 and node.is_cpp and together > names.CPP_PACKAGE_AND_NODE_MAX:
+        raise ValueError(f"its name and the package's have {together} characters together: a C++ node's have at "
+                         f"most {names.CPP_PACKAGE_AND_NODE_MAX}, so generated lines fit 100 columns")
 
 
 def _check_node_names(node: Node) -> None:
