@@ -36,15 +36,13 @@ ALNUM = string.ascii_lowercase + string.digits
 # Known defects, left out of what is drawn until fixed (each overflows the linters'
 # columns): an endpoint code name of 41 to 50 characters (rna.names.IDENTIFIER_MAX)
 # makes `self.<id>_subscription = self.create_subscription(` and the lifecycle
-# publisher's line too long; a long array default does not break; and a C++ node's
-# `std::make_shared<package::ClassName>();` overflows when the two names have more
-# than 73 characters together.
+# publisher's line too long; and a long array default does not break.
 FITTING_IDENTIFIER_MAX = 40
 ARRAY_MAX = 3
-FITTING_CPP_QUALIFIED_NAME = 73
 
 # Rules that look at several answers at once: a set drawn as valid that breaks one is redrawn.
-CROSS_ANSWER_RULES = ("both use the name", "is the name of a package its nodes use", "would shadow the Python module")
+CROSS_ANSWER_RULES = ("both use the name", "is the name of a package its nodes use", "would shadow the Python module",
+                      "characters together: a C++ node's")
 
 # Text that has broken, or could break, the files free text lands in: quotes and triple
 # quotes (Python), backslashes (string escapes, comment continuations), Jinja, XML and
@@ -172,7 +170,9 @@ def interface_types(draw, kind: str, distro: str) -> str:
         full = draw(st.sampled_from(_catalogue_types(distro, kind)))
         package, _, name = full.split("/")
     else:
-        package = draw(snake_case(30, min_size=2).filter(lambda name: names.package_name_error(name) is None))
+        # A few shared packages, so that one node meets one package's message and service of one name.
+        package = draw(st.one_of(st.sampled_from(("my_msgs", "robot_interfaces")), snake_case(30, min_size=2).filter(
+            lambda name: names.package_name_error(name) is None)))
         name = draw(st.one_of(
             st.from_regex(names.CAMEL_CASE, fullmatch=True).filter(lambda text: len(text) <= names.TYPE_NAME_MAX),
             # Names the generated files use themselves, or that another package has too.
@@ -369,8 +369,6 @@ def valid_answers(draw, max_nodes: int = 3) -> dict:
     node_list, expected = [], {}
     for name in draw(st.lists(node_names(), min_size=1, max_size=max_nodes, unique=True)):
         node, parameters_of_node = draw(nodes(name, distro, build_type))
-        if distros.LANGUAGES.get(str(node.get("language", distros.default_language(build_type))).lower()) == "cpp":
-            assume(len(answers["package_name"]) + len(names.snake_to_camel(name)) <= FITTING_CPP_QUALIFIED_NAME)
         node_list.append(node)
         expected[name] = parameters_of_node
     answers["nodes"] = node_list if draw(st.integers(0, 3)) else yaml.safe_dump(node_list, allow_unicode=True)
@@ -458,7 +456,7 @@ def _break_nodes(draw, answers):
                                              st.sampled_from(NOT_ONE_LINE).map(lambda c: f"one{c}two")))
     elif kind == "topic":
         bad = draw(st.sampled_from(("cmd vel", "a//b", "a/", "/", "~", "~x", "{node}/x", "1abc", "a/2b", "a-b",
-                                    "/" + "a" * names.ROS_NAME_MAX, "é")))
+                                    "/" + "a" * names.ROS_NAME_MAX, "é", "/_1/x", "~/_")))
         node["publishers"] = [{"topic": bad, "type": "std_msgs/msg/String"}]
     elif kind == "type":
         distro = answers["ros_distro"]
@@ -505,7 +503,8 @@ def _broken_parameter(ros: int) -> st.SearchStrategy:
         {"name": "r", "type": "string", "default": "a", "range": [0, 1]},
         {"name": "r", "default": 1.0, "range": [0.0, math.inf]}, {"name": "r", "default": 1, "read_only": "no"},
         {"name": "r", "default": 1, "description": "two\nlines"}, "rate", "rate:double=[1", 7,
-        *([{"name": "use_sim_time", "default": True}] if ros == 2 else
+        *([{"name": "use_sim_time", "default": True}, {"name": "r", "default": 5, "range": [0, 10, 3]},
+           {"name": "r", "default": 0.25, "range": [0.0, 1.0, 0.1]}] if ros == 2 else
           [{"name": "r", "default": INT_RANGES[1][1] + 1}, {"name": "r", "type": "int[]", "default": [-2**31 - 1]}]),
     ])
 
