@@ -271,6 +271,19 @@ def absolute_source(answers: Mapping, cwd: str | None = None) -> dict:
     return recorded
 
 
+def answers_yaml(answers: Mapping) -> str:
+    """The answers file's YAML, as Copier's to_nice_yaml writes it, but always read back the same.
+
+    PyYAML writes some characters raw that it then reads as something else (NEL, U+0085, in a
+    quoted string reads back as a space), and a string parameter default may hold any
+    character: such answers are written with escapes instead.
+    """
+    text = yaml.dump(answers, indent=4, allow_unicode=True, default_flow_style=False)
+    if yaml.safe_load(text) != answers:
+        text = yaml.dump(answers, indent=4, allow_unicode=False, default_flow_style=False)
+    return text
+
+
 class RnaExtension(Extension):
     """Filters and globals for copier.yml and the templates."""
 
@@ -292,6 +305,7 @@ class RnaExtension(Extension):
             endopt=rna.dialects.lines.OPTIONAL_END)
         environment.filters.update(
             absolute_source=absolute_source,
+            answers_yaml=answers_yaml,
             resolved_answers=rna.update.resolve.resolved,
             dialect=rna.dialects.dialect,
             driver_docstring=rna.wording.driver_docstring,

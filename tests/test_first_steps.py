@@ -20,7 +20,7 @@ import pytest
 import yaml
 
 from support.generation import FIXED_ANSWERS, GIT_IDENTITY, ROOT, answers_of, git
-from copier_glue import absolute_source
+from copier_glue import absolute_source, answers_yaml
 from support.releases import versions
 
 COPIER = str(Path(sys.executable).with_name("copier"))
@@ -191,3 +191,13 @@ def test_releases_are_selected_with_vcs_ref_in_a_fresh_clone(fresh_clone, tmp_pa
     assert f"Updating to template version {newest}" in updated.stderr
     assert answers_of(demo)["_commit"] == f"v{newest}"
     assert git("status", "--porcelain", cwd=demo).stdout.strip(), "the update changed nothing"
+
+
+@pytest.mark.parametrize("text", ["plain", "café ✓", "a\x85b", "line\nbreak", "\u2028", "tab\there"])
+def test_the_answers_file_reads_back_as_written(text):
+    """PyYAML writes NEL raw in a quoted string and reads it back as a space: such answers get escapes."""
+    answers = {"nodes": [{"name": "a", "parameters": [{"name": "g", "type": "string", "default": text}]}]}
+    written = answers_yaml(answers)
+    assert yaml.safe_load(written) == answers
+    if text.isascii() or text == "café ✓":
+        assert written == yaml.dump(answers, indent=4, allow_unicode=True, default_flow_style=False)
