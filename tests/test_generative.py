@@ -88,11 +88,14 @@ def longest_names(distro: str, build_type: str, language: str) -> dict:
             "action_clients": [{"name": "a" * 80, "type": "test_msgs/action/Fibonacci", "id": "fib"}],
             "publishers": ["p" * 40 + ":std_msgs/msg/String", "q" * 40 + ":std_msgs/msg/String"],
             "parameters": [{"name": "x" * 40, "default": 1.0, "description": url,
-                            "range": [-1.7976931348623157e308, 1.7976931348623157e308, 1e-300]}]}
+                            "range": [-1.7976931348623157e308, 1.7976931348623157e308, 1e-300]},
+                           # NEL read back as a space from the answers file (PyYAML).
+                           {"name": "greeting", "type": "string", "default": "a\x85b\u2028c"}]}
     return {"package_name": "p" * 33 if language == "cpp" else "p" * 39, "description": url,
             "maintainer": "Ada", "maintainer_email": "a" * 60 + "@" + "b" * 60 + ".org", "license": "MIT",
             "copyright_holder": "Ada", "copyright_year": 2026, "ros_distro": distro, "build_type": build_type,
-            "nodes": [node], "_expected": {node["name"]: {"x" * 40: ("double", 1.0)}}}
+            "nodes": [node], "_expected": {node["name"]: {"x" * 40: ("double", 1.0),
+                                                          "greeting": ("string", "a\x85b\u2028c")}}}
 
 
 @given(valid_answers())
@@ -112,6 +115,8 @@ def test_a_valid_answer_set_gives_files_that_read_back(template, answers):
         copy(template, destination, answers)
         package = destination / model.name
         files = [path for path in destination.rglob("*") if path.is_file()]
+        # The answers file is what `copier update` starts from: it must give the same package.
+        assert build_package(yaml.safe_load((destination / ".copier-answers.yml").read_text(encoding="utf-8"))) == model
 
         python = []
         for path in files:

@@ -239,8 +239,8 @@ def _ints(ros: int) -> st.SearchStrategy[int]:
 
 
 DOUBLES = st.one_of(st.floats(allow_nan=False, allow_infinity=False), st.sampled_from(EXTREME_DOUBLES))
-STRINGS = st.one_of(st.text(max_size=40), one_line_text(60), st.sampled_from(("", "true", "1", "1e+308", "null",
-                                                                               "~", "[1, 2]", "{}", "- x", "a: b")))
+STRINGS = st.one_of(st.text(max_size=40), one_line_text(60), st.sampled_from((
+    "", "true", "1", "1e+308", "null", "~", "[1, 2]", "{}", "- x", "a: b", "a\x85b", "a\u2028b", "a\nb\tc")))
 _TYPE_SPELLINGS = {scalar: [scalar] + [alias for alias, name in TYPE_ALIASES.items() if name == scalar]
                    for scalar in ("bool", "int", "double", "string")}
 
@@ -252,7 +252,9 @@ def parameters(draw, ros: int) -> tuple[dict | str, str, object]:
     is_array = draw(st.booleans())
     values = {"bool": st.booleans(), "int": _ints(ros), "double": DOUBLES, "string": STRINGS}[scalar]
     if is_array:
-        short = {"double": st.sampled_from(EXTREME_DOUBLES), "string": st.text(max_size=8)}.get(scalar, values)
+        # Short elements (escapes lengthen a string fourfold): a long array literal does not break yet.
+        short = {"double": st.sampled_from(EXTREME_DOUBLES),
+                 "string": st.text(string.ascii_letters + string.digits + " _-'\"\\", max_size=8)}.get(scalar, values)
         default = draw(st.lists(short, min_size=1, max_size=ARRAY_MAX))
     else:
         default = draw(values)
@@ -558,8 +560,14 @@ def invalid_answers(draw) -> tuple[dict, str]:
 # ----------------------------------------------------------------------------- data files
 
 def write_data_file(answers: dict, path: Path) -> Path:
-    """The answers as a YAML file for `copier copy --data-file` (which reads it with yaml.safe_load)."""
-    path.write_text(yaml.safe_dump(answers, allow_unicode=True, sort_keys=False), encoding="utf-8")
+    """The answers as a YAML file for `copier copy --data-file` (which reads it with yaml.safe_load).
+
+    Escaped where PyYAML would write a character raw that it reads back as another (NEL).
+    """
+    text = yaml.safe_dump(answers, allow_unicode=True, sort_keys=False)
+    if yaml.safe_load(text) != answers:
+        text = yaml.safe_dump(answers, allow_unicode=False, sort_keys=False)
+    path.write_text(text, encoding="utf-8")
     return path
 
 
