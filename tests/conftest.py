@@ -31,7 +31,7 @@ sys.path.insert(0, str(ROOT / "extensions"))
 # every run, and reports a failure as drawn (shrinking would re-render packages for
 # minutes); HYPOTHESIS_PROFILE=thorough draws many, different each run, and shrinks.
 settings.register_profile(
-    "fast", max_examples=20, deadline=None, derandomize=True, database=None, print_blob=True,
+    "fast", max_examples=15, deadline=None, derandomize=True, database=None, print_blob=True,
     phases=(Phase.explicit, Phase.reuse, Phase.generate),
     suppress_health_check=(HealthCheck.too_slow, HealthCheck.filter_too_much, HealthCheck.data_too_large),
 )

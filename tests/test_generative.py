@@ -66,22 +66,18 @@ def test_an_invalid_answer_set_is_refused_with_one_line_naming_the_question(temp
 
 # ----------------------------------------------------------------------------- valid answers
 
-def extreme_numbers(distro: str, build_type: str, language: str) -> dict:
-    """Numbers at the edges; `1e+308` in a config file is a string to YAML 1.1 (PyYAML, rosparam)."""
+def extreme_numbers(distro: str, language: str) -> tuple[dict, dict]:
+    """A node with numbers at the edges; `1e+308` in a config file is a string to YAML 1.1 (PyYAML, rosparam)."""
     parameters = {"huge": ("double", 1e308), "tiny": ("double", 1e-06), "gains": ("double[]", [1e16, -5e-324]),
                   "lowest": ("int", INT_RANGES[distros.generation(distro)][0]), "ranged": ("double", 1e300)}
     answers = [{"name": name, "type": ptype, "default": default} for name, (ptype, default) in parameters.items()]
     answers[-1]["range"] = [-1e308, 1e308]
     answers[-2]["range"] = [parameters["lowest"][1], 0]
-    return {"package_name": "extremes", "description": "Extreme numbers", "maintainer": "Ada",
-            "maintainer_email": "ada@example.com", "license": "MIT", "copyright_holder": "Ada",
-            "copyright_year": 2026, "ros_distro": distro, "build_type": build_type,
-            "nodes": [{"name": "edge", "language": language, "parameters": answers}],
-            "_expected": {"edge": parameters}}
+    return {"name": "edge", "language": language, "parameters": answers}, parameters
 
 
-def longest_names(distro: str, build_type: str, language: str) -> dict:
-    """Names at their longest, and a description with a long word: lines that overflowed before."""
+def edges(distro: str, build_type: str, language: str) -> dict:
+    """Names at their longest, a description with a long word, extreme numbers: what broke files before."""
     url = "https://example.com/" + "a-very-long-path/" * 6
     node = {"name": "n" * 39, "language": language, "description": f"See {url}", "timers": [1e-9],
             "service_servers": [{"name": "/" + "s" * 79, "type": "std_srvs/srv/Trigger", "id": "reset"}],
@@ -91,21 +87,20 @@ def longest_names(distro: str, build_type: str, language: str) -> dict:
                             "range": [-1.7976931348623157e308, 1.7976931348623157e308, 1e-300]},
                            # NEL read back as a space from the answers file (PyYAML).
                            {"name": "greeting", "type": "string", "default": "a\x85b\u2028c"}]}
+    numbers, extremes = extreme_numbers(distro, language)
     return {"package_name": "p" * 33 if language == "cpp" else "p" * 39, "description": url,
             "maintainer": "Ada", "maintainer_email": "a" * 60 + "@" + "b" * 60 + ".org", "license": "MIT",
             "copyright_holder": "Ada", "copyright_year": 2026, "ros_distro": distro, "build_type": build_type,
-            "nodes": [node], "_expected": {node["name"]: {"x" * 40: ("double", 1.0),
-                                                          "greeting": ("string", "a\x85b\u2028c")}}}
+            "nodes": [node, numbers], "_expected": {
+                node["name"]: {"x" * 40: ("double", 1.0), "greeting": ("string", "a\x85b\u2028c")},
+                numbers["name"]: extremes}}
 
 
 @given(valid_answers())
-@example(extreme_numbers("jazzy", "ament_cmake", "cpp"))
-@example(extreme_numbers("humble", "ament_python", "python"))
-@example(extreme_numbers("noetic", "catkin", "python"))
-@example(longest_names("jazzy", "ament_python", "python"))
-@example(longest_names("jazzy", "ament_cmake", "cpp"))
-@example(longest_names("noetic", "catkin", "python"))
-@example(longest_names("noetic", "catkin", "cpp"))
+@example(edges("jazzy", "ament_python", "python"))
+@example(edges("jazzy", "ament_cmake", "cpp"))
+@example(edges("noetic", "catkin", "python"))
+@example(edges("noetic", "catkin", "cpp"))
 def test_a_valid_answer_set_gives_files_that_read_back(template, answers):
     answers = dict(answers)
     expected = answers.pop("_expected")
