@@ -255,3 +255,12 @@ def test_long_python_text_is_split_to_fit():
 ])
 def test_ros2_takes_a_ranged_value_on_a_step_only(value, low, high, step, scalar, taken):
     assert on_step(value, low, high, step, scalar) is taken
+
+
+def test_a_double_written_with_an_exponent_and_no_dot_is_a_double():
+    # YAML 1.1 reads 1e-3 as a string: the answers mean a number.
+    assert infer_type("1e-3") == ParameterType("double")
+    assert coerce_default("1e-3", ParameterType("double")) == 0.001
+    assert coerce_default(["2E5", 1], ParameterType("double", True)) == [200000.0, 1.0]
+    assert infer_type("1e-3x") == ParameterType("string")
+    assert coerce_default("1e-3", ParameterType("string")) == "1e-3"

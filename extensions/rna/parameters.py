@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 import sys
 from dataclasses import dataclass
 
@@ -70,8 +71,18 @@ def infer_type(value: object) -> ParameterType:
     if isinstance(value, float):
         return ParameterType("double")
     if isinstance(value, str):
-        return ParameterType("string")
+        return ParameterType("double" if exponent_float(value) is not None else "string")
     raise ValueError(f"cannot tell the type of the default {spelled(value)}: add `type:`")
+
+
+# YAML 1.1, which PyYAML and Copier speak, reads a float with an exponent but no dot (1e-3)
+# as a string; YAML 1.2, ROS 2's parameter files and Python read it as a number.
+_EXPONENT_FLOAT = re.compile(r"[-+]?(\d+\.?\d*|\.\d+)[eE][-+]?\d+")
+
+
+def exponent_float(value: object) -> float | None:
+    """A string such as '1e-3' as the float it means, else None."""
+    return float(value) if isinstance(value, str) and _EXPONENT_FLOAT.fullmatch(value.strip()) else None
 
 
 def _coerce_scalar(value: object, scalar: str, ros: int) -> object:
@@ -86,6 +97,7 @@ def _coerce_scalar(value: object, scalar: str, ros: int) -> object:
                 raise ValueError(f"default {value} does not fit a {high.bit_length() + 1}-bit integer{where}")
             return value
     elif scalar == "double":
+        value = value if exponent_float(value) is None else exponent_float(value)
         if isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value):
             return float(value)
     elif scalar == "string":
