@@ -137,3 +137,12 @@ def test_a_qualified_name_continues_at_the_same_indent_in_cpp():
     line = f'      "s",{B} &{"C" * 45}Base::{B}on_{"i" * 40}_request,{B} this);'
     assert lines.fit_line(line, "cpp", inside=True) == [
         '      "s",', f'      &{"C" * 45}Base::', f'      on_{"i" * 40}_request, this);']
+
+
+def test_wide_characters_count_twice_in_cpp_as_cpplint_counts_them():
+    assert lines.columns("日本語", "cpp") == 6
+    assert lines.columns("日本語", "python") == 3  # flake8 counts characters
+    literal = '    descriptor.description = "' + f"{S}".join(["日本語の説明" * 4] * 3) + '";'
+    broken = lines.fit(literal, "cpp").split("\n")
+    assert len(broken) > 1
+    assert all(lines.columns(line, "cpp") <= 100 for line in broken)

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import re
 import textwrap
+import unicodedata
 from collections.abc import Iterable
 
 # Private-use characters: no text reaches the output raw with them (rna.names refuses
@@ -39,6 +40,15 @@ LIMITS = {"cpp": (100, 2), "python": (99, 4)}
 _OPTIONAL_WORDS = re.compile(
     f"{OPTIONAL}[^{OPTIONAL_END}{ALTERNATIVE}]*(?:{ALTERNATIVE}([^{OPTIONAL_END}]*))?{OPTIONAL_END}")
 _PREFIX = re.compile(r"[A-Za-z]*$")
+
+
+def columns(line: str, language: str) -> int:
+    """The width of a line as its linter counts it: flake8 counts characters; cpplint counts
+    East Asian wide characters twice and combining marks not at all."""
+    if language != "cpp" or line.isascii():
+        return len(line)
+    return sum(2 if unicodedata.east_asian_width(char) in "WF" else 0 if unicodedata.combining(char) else 1
+               for char in line)
 
 
 def splittable(spelled: Iterable[tuple[str, str]]) -> str:
@@ -120,7 +130,7 @@ def fit_line(line: str, language: str, inside: bool = False) -> list[str]:
     joined = pieces[0][1]
     for marker, piece in pieces[1:]:
         joined = _join(joined, marker, piece)
-    if len(joined) <= width:
+    if columns(joined, language) <= width:
         return [joined]
     if OPTIONAL in line:
         return fit_line(_OPTIONAL_WORDS.sub(lambda match: match[1] or "", line), language, inside)
@@ -139,7 +149,7 @@ def fit_line(line: str, language: str, inside: bool = False) -> list[str]:
     lines, current = [], head
     for index, (marker, piece) in enumerate(pieces[1:]):
         longer = _join(current, marker, piece)
-        if (index > 0 or marker == SPLIT) and len(longer) <= width:
+        if (index > 0 or marker == SPLIT) and columns(longer, language) <= width:
             current = longer
             continue
         lines.append(current.rstrip())
