@@ -29,7 +29,7 @@ from hypothesis import strategies as st
 from rna import AnswerError, build_package, catalogue, distros, names
 from rna.configs import yaml_literal
 from rna.licenses import LICENSES
-from rna.parameters import INT_RANGE, INT_RANGES, TYPE_ALIASES
+from rna.parameters import INT_RANGE, INT_RANGES, TYPE_ALIASES, infer_type
 
 ALNUM = string.ascii_lowercase + string.digits
 
@@ -284,9 +284,10 @@ def _expected(value: object, scalar: str) -> object:
 
 def _inferred(default: object, scalar: str) -> bool:
     """The type rna.parameters.infer_type gives the default is the one drawn."""
-    values = default if isinstance(default, list) else [default]
-    kinds = {bool: "bool", int: "int", float: "double", str: "string"}
-    return {kinds[type(v)] for v in values} == {scalar}
+    try:
+        return infer_type(default).scalar == scalar
+    except ValueError:
+        return False
 
 
 @st.composite
