@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import ast
 import re
-import shutil
 import subprocess
 import sys
 import tempfile
@@ -26,21 +25,14 @@ from copier.errors import UserMessageError
 from hypothesis import example, given
 from rna import build_package, distros
 from rna.parameters import INT_RANGES
-from support.generation import ROOT, TEMPLATE_ITEMS
+from support.generation import copy_template
 from support.strategies import invalid_answers, read_data_file, valid_answers, write_data_file
 
 
 @pytest.fixture(scope="module")
 def template(tmp_path_factory) -> Path:
     """The template as a plain folder: Copier renders it in place, without cloning a repository each time."""
-    folder = tmp_path_factory.mktemp("plain_template")
-    for item in TEMPLATE_ITEMS:
-        source = ROOT / item
-        if source.is_dir():
-            shutil.copytree(source, folder / item, ignore=shutil.ignore_patterns("__pycache__"))
-        else:
-            shutil.copy2(source, folder / item)
-    return folder
+    return copy_template(tmp_path_factory.mktemp("plain_template"))
 
 
 def copy(template: Path, destination: Path, answers: dict) -> None:

@@ -68,8 +68,8 @@ def examples() -> list[str]:
 VALID = {**FIXED_ANSWERS, **example("robot_driver")}
 
 
-def snapshot_template(destination: Path, source: Path = ROOT) -> Path:
-    """Copy the template (copier.yml, template/, extensions/) into a fresh, committed git repo."""
+def copy_template(destination: Path, source: Path = ROOT) -> Path:
+    """Copy the template (copier.yml, template/, extensions/) into `destination`, a plain folder."""
     destination.mkdir(parents=True, exist_ok=True)
     for item in TEMPLATE_ITEMS:
         path = source / item
@@ -77,6 +77,12 @@ def snapshot_template(destination: Path, source: Path = ROOT) -> Path:
             shutil.copytree(path, destination / item, ignore=shutil.ignore_patterns("__pycache__"))
         else:
             shutil.copy2(path, destination / item)
+    return destination
+
+
+def snapshot_template(destination: Path, source: Path = ROOT) -> Path:
+    """Copy the template (copier.yml, template/, extensions/) into a fresh, committed git repo."""
+    copy_template(destination, source)
     git("init", "-q", "-b", "main", cwd=destination)
     git("add", "-A", cwd=destination)
     git("commit", "-q", "-m", "template snapshot", cwd=destination)
