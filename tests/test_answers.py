@@ -264,6 +264,23 @@ def test_quick_questions_use_the_same_rules(question, value, rule):
 
 @pytest.mark.parametrize(
     ("question", "changes", "rule"),
+    [("node_name", {"ros_distro": "noetic", "build_type": "catkin", "package_name": "mover",
+                    "node_language": "python", "node_name": "mover"}, "would shadow the Python module 'mover'"),
+     ("node_name", {"package_name": "p" * 39, "build_type": "ament_cmake", "node_language": "cpp",
+                    "node_name": "n" * 39}, "78 characters together"),
+     ("node_publishers", {"ros_distro": "noetic", "build_type": "catkin", "node_language": "python",
+                          "node_name": "geometry_msgs", "node_publishers": "pose:geometry_msgs/msg/Pose"},
+      "would shadow the Python module 'geometry_msgs'")],
+)
+def test_a_rule_on_the_node_as_a_whole_is_met_at_the_question_that_breaks_it(question, changes, rule):
+    """The language is asked before the name, so the name's language rules are known there."""
+    assert rule in question_error(question, {**VALID, **changes})
+    assert question_error(question, {**VALID, **changes, "node_language": "cpp" if "noetic" in
+                                     changes.values() else "python"}) is None
+
+
+@pytest.mark.parametrize(
+    ("question", "changes", "rule"),
     [("target", {"target": "workspace"}, "is not package or node"),
      ("target", {"target": "node", "interfaces": {"messages": [{"name": "A"}]}}, "cannot define interfaces"),
      ("nodes", {"target": "node", "nodes": [{"name": "a"}, {"name": "b"}]}, "give exactly one"),

@@ -119,10 +119,21 @@ def test_the_dialog_builds_nodes_in_the_short_forms():
 
 def test_an_ament_cmake_node_asks_its_language_and_a_package_keeps_one_node():
     script = Script(["Remove listener", "Edit talker", "Language", "Python", "Done with", "Remove talker", "Done",
-                     "Add a node", "solo", "C++", "Done with", "Done"])
+                     "Add a node", "C++", "solo", "Done with", "Done"])
     nodes = dialog.Dialog([{"name": "talker"}, {"name": "listener"}], rules("ament_cmake"), script).run()
     assert nodes == [{"name": "solo", "language": "cpp"}]
     assert script.said[-2] == "A package needs a node: add one."
+
+
+def test_a_name_is_checked_with_the_language_asked_before_it():
+    """A ROS 1 Python script named like a module it imports is refused at the name, added or renamed."""
+    script = Script(["Add a node", "Python", "pkg", "driver", "Add a publisher", "pose",
+                     "geometry_msgs/Pose", "Rename", "geometry_msgs", "mover", "Done with", "Done"])
+    nodes = dialog.Dialog([], dialog.Rules("pkg", "catkin", Types(1, distro="noetic")), script).run()
+    assert nodes == [{"name": "mover", "language": "python", "publishers": ["pose:geometry_msgs/Pose"]}]
+    assert [answer for answer, _ in script.refused] == ["pkg", "geometry_msgs"]
+    assert "would shadow the Python module 'pkg'" in script.refused[0][1]
+    assert "would shadow the Python module 'geometry_msgs'" in script.refused[1][1]
 
 
 def test_lifecycle_and_component_are_switched_on_and_off_within_the_rules():

@@ -19,8 +19,9 @@ from pathlib import Path
 import pytest
 import yaml
 
-from support.generation import FIXED_ANSWERS, GIT_IDENTITY, ROOT, answers_of, git
+import rna.names
 from copier_glue import absolute_source, answers_yaml
+from support.generation import FIXED_ANSWERS, GIT_IDENTITY, ROOT, answers_of, git
 from support.releases import versions
 
 COPIER = str(Path(sys.executable).with_name("copier"))
@@ -76,10 +77,21 @@ def test_a_copy_from_a_relative_path_records_it_absolute_and_says_how_to_commit(
     result = copy_relative(template_dir, tmp_path / "demo")
     assert result.returncode == 0, result.stderr
     assert answers_of(tmp_path / "demo")["_src_path"] == str(template_dir)
-    assert "colcon build --packages-up-to demo\n" in result.stderr
-    assert (f"  cd {tmp_path / 'demo'}\n  git init && git add -A . && git commit -m \"demo from rna-template\"\n"
+    assert "  colcon build --packages-up-to demo\n" in result.stderr
+    assert (f"  cd {tmp_path / 'demo'}\n  git init\n  git add -A .\n  git commit -m \"demo from rna-template\"\n"
             "  copier update --trust\n") in result.stderr
     assert "--packages-select" not in result.stderr
+
+
+def test_the_message_keeps_to_80_columns_with_the_longest_names(template_dir, tmp_path):
+    """Only a line that holds a path the user chose, or one command, may be longer."""
+    destination = tmp_path / ("p" * rna.names.PACKAGE_NAME_MAX)
+    result = copy_relative(template_dir, destination)
+    assert result.returncode == 0, result.stderr
+    message = result.stderr[result.stderr.index("Your package is in"):].splitlines()
+    assert len(message) >= 9
+    long = [line for line in message if len(line) > 79 and str(tmp_path) not in line]
+    assert not long, long
 
 
 def test_inside_a_repository_the_message_only_says_commit(template_dir, tmp_path):
@@ -88,7 +100,7 @@ def test_inside_a_repository_the_message_only_says_commit(template_dir, tmp_path
     git("init", "-q", cwd=workspace)
     result = copy_relative(template_dir, workspace / "src" / "demo")
     assert result.returncode == 0, result.stderr
-    assert '\n  git add -A . && git commit -m "demo from rna-template"\n' in result.stderr
+    assert '\n  git add -A .\n  git commit -m "demo from rna-template"\n' in result.stderr
     assert "git init" not in result.stderr
 
 

@@ -115,8 +115,8 @@ def test_one_node_prompt_by_prompt_without_yaml(terminal, tmp_path):
     answer(child, "ROS distribution", "")
     answer(child, "ament_python holds", DOWN)  # ament_cmake
     answer(child, "describe the package's nodes", DOWN)  # one node
-    answer(child, "Node name", "\b" * 10 + "motion_control")
     answer(child, "Language of the node", DOWN)  # Python, through ament_cmake_python
+    answer(child, "Node name", "\b" * 10 + "motion_control")
     answer(child, "Topics it publishes", "cmd_vel:geometry_msgs/msg/Twist")
     answer(child, "Topics it subscribes to", "odom:nav_msgs/msg/Odometry, scan:sensor_msgs/msg/LaserScan")
     answer(child, "Services it offers", "")

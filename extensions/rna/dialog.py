@@ -243,15 +243,15 @@ class Dialog:
 
     def add_node(self) -> None:
         others = [node["name"] for node in self.nodes]
+        # The language first: some rules on the name depend on it.
+        language = (self._language(self.rules.languages[0]) if len(self.rules.languages) > 1
+                    else self.rules.languages[0])
         name = self.ask.text(f"Node name, lower_snake_case {BACK}",
-                             validate=optional(lambda answer: self.rules.name_error(answer, others))).strip()
+                             validate=optional(lambda answer: self._name_error({"language": language}, answer,
+                                                                               others))).strip()
         if not name:
             return
-        node = {"name": name}
-        if len(self.rules.languages) > 1:
-            node["language"] = self._language(self.rules.languages[0])
-        else:
-            node["language"] = self.rules.languages[0]
+        node = {"name": name, "language": language}
         self.nodes.append(node)
         self.edit_node(node)
 
@@ -324,7 +324,11 @@ class Dialog:
     def _rename(self, node: dict) -> str:
         others = [other["name"] for other in self.nodes if other is not node]
         return self.ask.text("New name", default=node["name"],
-                             validate=lambda answer: self.rules.name_error(answer.strip(), others)).strip()
+                             validate=lambda answer: self._name_error(node, answer.strip(), others)).strip()
+
+    def _name_error(self, node: Mapping, name: str, others: Sequence[str]) -> str | None:
+        """The name's own rules, then those of the node it names (a name that shadows a module...)."""
+        return self.rules.name_error(name, others) or self.rules.node_error({**node, "name": name})
 
     def _with(self, node: dict, kind: Kind, entry: str) -> dict:
         return {**node, kind.key: [*(node.get(kind.key) or []), entry]}

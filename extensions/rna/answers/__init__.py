@@ -152,13 +152,20 @@ class Answers:
             raise ValueError("a node added to an existing package is one node: give exactly one")
         return nodes
 
-    def _quick_list(self, question: str) -> None:
-        """A one-node quick question: comma-separated short forms of one `nodes` key."""
+    def _quick_node(self) -> None:
+        """The one node the quick questions describe so far, checked as the node it becomes.
+
+        Its language is asked before its name, and the package is the real one, so a rule that
+        depends on them (a ROS 1 Python script named like a module it imports, a C++ node's
+        name with its package's) is met at the question that breaks it, not after the last.
+        """
         language = distros.node_language(self.raw.get("build_type"), self.raw.get("node_language"))
         name = self.raw.get("node_name") if not names.node_name_error(self.raw.get("node_name")) else "node"
-        parse_node({"name": name, "language": language, QUICK_LISTS[question]: self.raw.get(question)},
-                   package="pkg", build_type=self.raw.get("build_type"),
-                   types=Types(self.ros, distro=self.raw.get("ros_distro")))
+        package = self.raw.get("package_name")
+        node = {"name": name, "language": language}
+        node.update((key, self.raw[question]) for question, key in QUICK_LISTS.items() if self.raw.get(question))
+        parse_node(node, package=package if not names.package_name_error(package) else "pkg",
+                   build_type=self.raw.get("build_type"), types=Types(self.ros, distro=self.raw.get("ros_distro")))
 
     def _copyright_year(self) -> int:
         value = self.raw.get("copyright_year")
@@ -171,6 +178,7 @@ class Answers:
         error = names.node_name_error(self.raw.get("node_name"))
         if error:
             raise ValueError(error)
+        self._quick_node()
 
     def read(self, question: str):
         """The answer to `question`, read and checked; ValueError names the rule broken."""
@@ -184,7 +192,7 @@ class Answers:
         if question in ("interfaces", "nodes"):
             return getattr(self, "definitions" if question == "interfaces" else question)
         if question in QUICK_LISTS:
-            return self._quick_list(question)
+            return self._quick_node()
         return getattr(self, f"_{question}")()
 
     def check(self, question: str) -> None:
