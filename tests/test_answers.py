@@ -202,6 +202,31 @@ def test_short_and_long_forms_give_the_same_model():
     assert short == long
 
 
+@pytest.mark.parametrize("spelled", ["true", "True", "yes", "on", "false", "No", "off", "y", "1"])
+def test_a_boolean_is_spelled_the_same_way_in_short_and_long_forms(spelled):
+    """YAML's spellings of true and false, and nothing else, wherever a boolean is written."""
+    forms = [node(parameters=[f"flag:bool={spelled}"]), node(parameters=[f"flag={spelled}"]),
+             node(parameters=yaml.safe_load(f"[{{name: flag, type: bool, default: {spelled}}}]")),
+             node(parameters=yaml.safe_load(f"[{{name: flag, default: {spelled}}}]"))]
+    read = []
+    for form in forms:
+        try:
+            parameter = build_package(form).nodes[0].parameters[0]
+            read.append((parameter.type.scalar, parameter.default))
+        except AnswerError:
+            read.append("refused")
+    flag = yaml.safe_load(spelled)
+    expected = ("bool", flag) if isinstance(flag, bool) else "refused"
+    assert read[0] == read[2] == expected
+    assert read[1] == read[3]  # untyped: a bool, or the type the text reads as
+    assert (read[1][0] == "bool") == isinstance(flag, bool)
+    lifecycle = yaml.safe_load(f"[{{name: a, lifecycle: {spelled}}}]")
+    try:
+        assert build_package(answers(nodes=lifecycle)).nodes[0].lifecycle is flag
+    except AnswerError as error:
+        assert not isinstance(flag, bool) and "lifecycle must be true or false" in str(error)
+
+
 def test_prompt_answers_are_comma_separated_short_forms():
     package = build_package(node(publishers="a:std_msgs/msg/String, b:std_msgs/msg/Int32",
                                  parameters="gains:double[]=[1.0, 2.0], name=x"))
