@@ -45,6 +45,7 @@ try:
     import rna.dialects.lines
     import rna.dialects.python
     import rna.dialog
+    import rna.graph
     import rna.lab
     import rna.layout
     import rna.names
@@ -311,6 +312,8 @@ class RnaExtension(Extension):
             driver_docstring=rna.wording.driver_docstring,
             fit_cpp=functools.partial(rna.dialects.lines.fit, language="cpp"),
             fit_python=functools.partial(rna.dialects.lines.fit, language="python"),
+            graph=rna.graph.mermaid_lines, endpoint_rows=rna.graph.endpoint_rows,
+            parameter_rows=rna.graph.parameter_rows, interface_rows=rna.graph.interface_rows,
             package_name_from_folder=rna.names.package_name_from_folder,
             period_text=rna.wording.period_text,
             md_cell=rna.wording.markdown_cell,

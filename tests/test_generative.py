@@ -26,6 +26,7 @@ from hypothesis import example, given
 from rna import build_package, distros
 from rna.parameters import INT_RANGES
 from support.generation import copy_template
+from support.packages import table_rows_of_wrong_width
 from support.strategies import invalid_answers, read_data_file, valid_answers, write_data_file
 
 
@@ -124,6 +125,7 @@ def test_a_valid_answer_set_gives_files_that_read_back(template, answers):
                 manifest.find("maintainer").get("email")) == (model.description, model.maintainer,
                                                               model.maintainer_email)
         lint_python(python)
+        assert not table_rows_of_wrong_width((destination / "README.md").read_text(encoding="utf-8"))
 
         for node in model.nodes:
             config = yaml.safe_load((package / node.config_file).read_text(encoding="utf-8"))

@@ -1,7 +1,9 @@
-"""Reading a generated package as ROS tools do: package.xml through catkin_pkg, launch files, the model."""
+"""Reading a generated package as ROS tools do: package.xml through catkin_pkg, launch files, the model,
+the README's tables as a Markdown renderer splits them."""
 
 from __future__ import annotations
 
+import re
 import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
@@ -54,3 +56,20 @@ def launched_nodes(launch_file: Path) -> dict[str, str]:
             assert loaded.get("command") == "load"
             nodes[node.get("type")] = loaded.get("file")
     return nodes
+
+
+TABLE_PIPE = re.compile(r"(?<!\\)\|")  # GFM splits a row at every pipe not escaped, in code spans too
+
+
+def table_rows_of_wrong_width(markdown: str) -> list[str]:
+    """Rows of the Markdown tables whose cell count differs from their header's."""
+    wrong, columns = [], None
+    for line in markdown.splitlines():
+        if not line.startswith("|"):
+            columns = None
+            continue
+        count = len(TABLE_PIPE.findall(line))
+        columns = columns or count
+        if count != columns:
+            wrong.append(line)
+    return wrong
