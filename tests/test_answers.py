@@ -400,3 +400,13 @@ def test_one_package_s_message_and_service_of_one_name_get_two_names_in_code():
         names_in_code = dialect(package.nodes[0]).types if language == "python" else dialect(
             package.nodes[0]).alias_names
         assert sorted(names_in_code.values()) == ["MyMsgsMsgGoal", "MyMsgsSrvGoal", "OtherGoal"]
+
+
+@pytest.mark.parametrize(("distro", "build_type"), [("jazzy", "ament_cmake"), ("noetic", "catkin")])
+def test_a_parameter_named_count_is_the_users_and_the_starter_counts_elsewhere(distro, build_type):
+    """The starter's message counter is not the base class's: it gives way to the user's names."""
+    node = build_package(answers(ros_distro=distro, build_type=build_type, nodes=[
+        {"name": "a", "publishers": ["out:std_msgs/msg/Int32"], "timers": [0.5],
+         "parameters": ["count:int=3", "count2:int=4"]}])).nodes[0]
+    assert node.starter_counter == "count3"
+    assert build_package(answers(nodes=[{"name": "a", "timers": [0.5]}])).nodes[0].starter_counter == "count"

@@ -8,6 +8,8 @@ it) nor of how a language spells code (rna.dialects).
 
 from __future__ import annotations
 
+import itertools
+
 from dataclasses import dataclass, field
 from functools import cached_property
 
@@ -18,7 +20,7 @@ from .licenses import License
 from .parameters import Parameter
 
 # Members the generated base classes declare besides the endpoints'.
-BASE_MEMBERS = ("node_handle", "private_node_handle", "action_callback_group", "count")
+BASE_MEMBERS = ("node_handle", "private_node_handle", "action_callback_group")
 
 
 @dataclass(frozen=True)
@@ -232,6 +234,13 @@ class Node:
         if self.timers and (self.publishers or self.service_clients or self.action_clients):
             return self.timers[0]
         return None
+
+    @property
+    def starter_counter(self) -> str:
+        """The member the starter code counts its messages in: `count`, unless the node has a use for it."""
+        taken = {*BASE_MEMBERS, *(e.member for e in self.endpoints), *(p.name for p in self.parameters)}
+        candidates = itertools.chain(["count"], (f"count{n}" for n in itertools.count(2)))
+        return next(name for name in candidates if name not in taken)
 
     @property
     def starter_interfaces(self) -> tuple[InterfaceType, ...]:

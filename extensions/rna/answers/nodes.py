@@ -329,10 +329,10 @@ def _check_node_names(node: Node) -> None:
     methods = [(method, endpoint.label) for endpoint in node.endpoints for method in endpoint.methods]
     methods.extend((name, "a lifecycle callback") for name in names.LIFECYCLE_CALLBACKS)
     _check_unique(methods)
-    # ROS 1 nodes keep parameters in members named after them.
+    # ROS 1 nodes keep parameters in members named after them; ROS 2 nodes ask for them by name.
     _check_unique([*((e.member, e.label) for e in node.endpoints), *methods,
-                          *((name, "a member of the base class") for name in BASE_MEMBERS),
-                          *((p.name, f"parameter '{p.name}'") for p in node.parameters)])
+                   *((name, "a member of the base class") for name in BASE_MEMBERS),
+                   *((p.name, f"parameter '{p.name}'") for p in node.parameters if node.ros == 1)])
 
 
 def parse_nodes(value: object, *, package: str, build_type: str, types: Types) -> tuple[Node, ...]:
