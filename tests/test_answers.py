@@ -318,8 +318,10 @@ def test_where_the_output_goes_has_rules_too(question, changes, rule):
 def test_several_publishers_get_a_message_variable_each():
     one = build_package(node(publishers=["a:std_msgs/msg/String"], timers=[1])).nodes[0]
     two = build_package(node(publishers=["a:std_msgs/msg/String", "/b/c:std_msgs/msg/Int32"], timers=[1])).nodes[0]
-    assert list(dialect(one).message_variables.values()) == ["msg"]
-    assert list(dialect(two).message_variables.values()) == ["a_msg", "b_c_msg"]
+    relay = build_package(node(publishers=["a:std_msgs/msg/String"], subscribers=["b:std_msgs/msg/String"])).nodes[0]
+    assert list(one.message_variables.values()) == ["msg"]
+    assert list(two.message_variables.values()) == ["a_msg", "b_c_msg"]
+    assert list(relay.message_variables.values()) == ["a_msg"]  # beside the `msg` its callback receives
 
 
 def test_default_description_says_what_the_nodes_do():

@@ -40,6 +40,9 @@ TRACKER_SAME = example("tracker", package_name="tracker_same", build_type="ament
                        nodes=[{**node, "language": "python"} for node in TRACKER["nodes"]])
 TRACKER_SAME["nodes"][1]["subscribers"] = ["target:Target"]
 
+# camera -> detector -> controller: the detector publishes from its subscription's callback.
+DATA_CHAIN = example("data_chain")
+
 # Every kind of Python node, with fast timers so that a SIGINT often lands mid-callback.
 STOPPABLE = example("every_python_node")
 
@@ -87,6 +90,7 @@ def workspace(ros2, template_dir, tmp_path_factory) -> Workspace:
     generate(template_dir, path / "src" / "tracker", TRACKER)
     generate(template_dir, path / "src" / "tracker_same", TRACKER_SAME)
     generate(template_dir, path / "src" / "stoppable", STOPPABLE)
+    generate(template_dir, path / "src" / "data_chain", DATA_CHAIN)
     # Nodes added to packages written by hand (an ament_python and an ament_cmake one).
     add_node(template_dir, existing_packages.ament_python(path / "src" / "hand_robot"),
              {"node_name": "listener", "node_subscribers": "chatter:std_msgs/msg/String"})
@@ -113,6 +117,17 @@ def test_default_talker_reaches_default_listener(workspace):
         talker.wait_for(r'Publishing: "Hello World: \d+"')
         listener.wait_for(r'I heard: "Hello World: \d+"')
         stop_all(talker, listener)
+
+
+def test_data_flows_along_a_chain_of_generated_nodes_with_no_code_added(workspace):
+    """The detector has no timer: each message it hears is passed on, and a Point built, for the controller."""
+    nodes = [workspace.node("data_chain", name) for name in ("controller", "detector", "camera")]
+    with started(*nodes) as (controller, detector, camera):
+        camera.wait_for(r'Publishing: "Hello World: \d+"')
+        detector.wait_for(r'I heard: "Hello World: \d+"')
+        controller.wait_for(r'I heard: "Hello World: \d+"')  # the camera's text, passed on
+        controller.wait_for(r"Received a message on target")
+        stop_all(camera, detector, controller)
 
 
 def test_launch_file_starts_every_node_with_its_config(workspace):

@@ -236,6 +236,35 @@ class Node:
         return None
 
     @property
+    def relay(self) -> Topic | None:
+        """The subscription whose starter callback publishes, in a node with publishers and no timer.
+
+        A node that turns what it hears into what it says (a detector between a camera and
+        a controller) then passes data along a chain of generated nodes with no code added.
+        """
+        return self.subscribers[0] if self.publishers and not self.timers and self.subscribers else None
+
+    @property
+    def message_variables(self) -> dict[Topic, str]:
+        """The starter code's variable for each publisher's message: `msg`, or `<id>_msg` for
+        several, or beside the `msg` a relay subscription's callback receives."""
+        if len(self.publishers) == 1 and not self.relay:
+            return {self.publishers[0]: "msg"}
+        return {topic: f"{topic.id}_msg" for topic in self.publishers}
+
+    @property
+    def starter_built_messages(self) -> tuple[Topic, ...]:
+        """The publishers whose messages the starter code builds; a relay passes on a message of its own type."""
+        if not self.starter_publishes:
+            return ()
+        return tuple(t for t in self.publishers if not (self.relay and t.type == self.relay.type))
+
+    @property
+    def starter_publishes(self) -> bool:
+        """The starter code publishes: from the driving timer, or from the relay subscription."""
+        return bool(self.publishers) and bool(self.driver_timer or self.relay)
+
+    @property
     def starter_counter(self) -> str:
         """The member the starter code counts its messages in: `count`, unless the node has a use for it."""
         taken = {*BASE_MEMBERS, *(e.member for e in self.endpoints), *(p.name for p in self.parameters)}
@@ -245,9 +274,9 @@ class Node:
     @property
     def starter_interfaces(self) -> tuple[InterfaceType, ...]:
         """The interface types the starter code in the user's file names, sorted, each once."""
-        used = [action.type for action in self.action_servers]
+        used = [action.type for action in self.action_servers] + [t.type for t in self.starter_built_messages]
         if self.driver_timer:
-            used += [endpoint.type for endpoint in self.publishers + self.service_clients + self.action_clients]
+            used += [endpoint.type for endpoint in self.service_clients + self.action_clients]
         return tuple(sorted(set(used), key=lambda t: t.full_name))
 
     @property

@@ -139,11 +139,10 @@ class CppDialect:
         """What the starter code of the user's file uses besides the node's own needs."""
         node = self.node
         headers = [self.header(t) for t in node.starter_interfaces]
-        if node.driver_timer:
-            if node.publishers:
-                headers.append("<cstddef>")
-            if any(t.type.data_field in ("string", "int", "float") for t in node.publishers):
-                headers.append("<string>")  # std::to_string
+        if node.starter_publishes:
+            headers.append("<cstddef>")  # the message counter's std::size_t
+        if any(t.type.data_field in ("string", "int", "float") for t in node.starter_built_messages):
+            headers.append("<string>")  # std::to_string
         if any(t.type.data_field in ("int", "float") for t in node.subscribers):
             headers.append("<string>")
         return headers
@@ -158,14 +157,6 @@ class CppDialect:
         """Includes of the user's src/<node>.cpp: what its starter code uses."""
         own = f"{self.node.package}/{self.node.base_name}.{self.HEADER_EXTENSION}"
         return include_block([own, *self._needs("user"), *self._starter_headers()])
-
-    @property
-    def message_variables(self) -> dict:
-        """The starter code's variable for each publisher's message: msg, or <id>_msg for several."""
-        publishers = self.node.publishers
-        if len(publishers) == 1:
-            return {publishers[0]: "msg"}
-        return {topic: f"{topic.id}_msg" for topic in publishers}
 
     @staticmethod
     def sample(data_field: str, count: str, msg: str = "msg") -> str:

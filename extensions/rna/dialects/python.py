@@ -164,14 +164,6 @@ class PythonDialect:
         return [item for need in features.needs(self.node) for item in getattr(need, which)]
 
     @property
-    def message_variables(self) -> dict:
-        """The starter code's variable for each publisher's message: msg, or <id>_msg for several."""
-        publishers = self.node.publishers
-        if len(publishers) == 1:
-            return {publishers[0]: "msg"}
-        return {topic: f"{topic.id}_msg" for topic in publishers}
-
-    @property
     def base_module(self) -> str:
         """What the user's file imports the base class from."""
         return f"{self.node.package}.{self.node.base_name}"

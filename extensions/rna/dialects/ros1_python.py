@@ -26,9 +26,8 @@ class Ros1Python(PythonDialect):
     def node_imports(self) -> str:
         """Imports of the user's scripts/<node>.py: what its starter code uses."""
         node = self.node
-        parts = []
+        parts = [(t.type, "") for t in node.starter_built_messages]
         if node.driver_timer:
-            parts += [(t.type, "") for t in node.publishers]
             parts += [(s.type, "Request") for s in node.service_clients]
             parts += [(a.type, "Goal") for a in node.action_clients]
         parts += [(s.type, "Response") for s in node.service_servers]
