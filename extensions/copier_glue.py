@@ -46,6 +46,7 @@ try:
     import rna.dialects.python
     import rna.dialog
     import rna.graph
+    import rna.replies
     import rna.lab
     import rna.layout
     import rna.names
@@ -314,6 +315,8 @@ class RnaExtension(Extension):
             fit_python=functools.partial(rna.dialects.lines.fit, language="python"),
             graph=rna.graph.mermaid_lines, endpoint_rows=rna.graph.endpoint_rows,
             parameter_rows=rna.graph.parameter_rows, interface_rows=rna.graph.interface_rows,
+            replies=lambda service, package: rna.replies.replies(service.type, package.definitions,
+                                                                  package.interfaces_home),
             package_name_from_folder=rna.names.package_name_from_folder,
             period_text=rna.wording.period_text,
             md_cell=rna.wording.markdown_cell,

@@ -149,8 +149,9 @@ def test_launch_file_starts_every_node_with_its_config(workspace):
 def test_service_client_gets_the_servers_responses(workspace):
     with started(workspace.node("robot_services", "server"), workspace.node("robot_services", "client")) as (
             server, client):
-        client.wait_for(r"reset answered: .*Trigger_Response\(success=False")
-        client.wait_for(r"enable answered: .*SetBool_Response")
+        # The starter answers as a std_srvs caller expects from a request that worked.
+        client.wait_for(r"reset answered: .*Trigger_Response\(success=True, message='done'\)")
+        client.wait_for(r"enable answered: .*SetBool_Response\(success=True, message='done'\)")
         server.wait_for("Answering a reset request")
         server.wait_for("Answering an enable request")
         stop_all(client, server)

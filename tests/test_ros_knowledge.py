@@ -6,11 +6,13 @@ import math
 
 import pytest
 import yaml
-from rna import configs, names
+from rna import build_package, configs, names
 from rna.dialects import Ros1Cpp, Ros1Python, Ros2Cpp, Ros2Python, cpp, python
 from rna.interfaces import InterfaceType, parse_interface
 from rna.licenses import LICENSES
 from rna.parameters import ParameterType, coerce_default, infer_type, on_step, parse_type
+from rna.replies import replies
+from support.generation import VALID, example
 
 
 @pytest.mark.parametrize("name", ["turtlesim", "my_robot2", "a1", "target_tracking"])
@@ -264,3 +266,13 @@ def test_a_double_written_with_an_exponent_and_no_dot_is_a_double():
     assert coerce_default(["2E5", 1], ParameterType("double", True)) == [200000.0, 1.0]
     assert infer_type("1e-3x") == ParameterType("string")
     assert coerce_default("1e-3", ParameterType("string")) == "1e-3"
+
+
+def test_a_service_starter_answers_what_a_caller_reads_as_success():
+    package = build_package({**VALID, **example("tracker")})
+    assert replies(InterfaceType("std_srvs", "srv", "Trigger")) == (("success", True), ("message", "done"))
+    assert replies(InterfaceType("std_srvs", "srv", "SetBool", ros=1)) == (("success", True), ("message", "done"))
+    own = InterfaceType("tracker_interfaces", "srv", "SetTarget")
+    assert replies(own, package.definitions, package.interfaces_home) == (("accepted", True),)
+    assert replies(InterfaceType("std_srvs", "srv", "Empty")) == ()
+    assert replies(InterfaceType("other_pkg", "srv", "SetTarget"), package.definitions, package.interfaces_home) == ()

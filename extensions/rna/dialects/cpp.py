@@ -106,6 +106,11 @@ class CppDialect:
 
     SCALARS = _SCALARS
     string = staticmethod(string)
+
+    @staticmethod
+    def value(value: bool | str) -> str:
+        """A C++ literal for a field the starter code sets: a bool or a text."""
+        return ("true" if value else "false") if isinstance(value, bool) else string(value)
     # Names the generated C++ uses unqualified in the node's classes.
     RESERVED = frozenset({"CallbackReturn", "Node", "LifecycleNode"})
 
