@@ -169,6 +169,16 @@ def test_one_node_answered_prompt_by_prompt(make_package):
     assert (destination / "mover" / "mover" / "motion_control.py").is_file()
 
 
+@pytest.mark.parametrize(("distro", "call"), [("humble", "rclcpp::create_timer(\n      this, get_clock(), "),
+                                              ("jazzy", "create_timer(\n      std::chrono")])
+def test_cpp_timers_follow_ros_time_as_the_distro_spells_it(make_package, distro, call):
+    """A wall timer ignores use_sim_time; Humble's Node has no create_timer, its free function does it."""
+    destination = make_package({"ros_distro": distro, "build_type": "ament_cmake",
+                                "nodes": [{"name": "a", "language": "cpp", "timers": [0.1]}]})
+    base = next(destination.rglob("a_base.hpp")).read_text()
+    assert call in base and "wall_timer" not in base
+
+
 def test_python_names_that_clash_are_imported_under_their_package(make_package):
     package = package_dir(make_package({"package_name": "poses", "build_type": "ament_python", "nodes": [
         {"name": "pose", "subscribers": ["a:geometry_msgs/msg/Pose", "b:turtlesim/msg/Pose"]}]}))
