@@ -22,6 +22,7 @@ class Needs:
 def node_features(node) -> frozenset[str]:
     """The features of a node, named as in the tables below."""
     parameters = node.parameters
+    qos = [topic.qos for topic in node.publishers + node.subscribers]
     found = {
         "node": True,
         # What rospy's own calls wire up in a ROS 1 base class (an action client is actionlib's alone).
@@ -36,7 +37,12 @@ def node_features(node) -> frozenset[str]:
         "action_servers": bool(node.action_servers),
         "no_action_servers": not node.action_servers,
         "action_clients": bool(node.action_clients),
-        "sensor_data_qos": any(t.qos.profile == "sensor_data" for t in node.publishers + node.subscribers),
+        "sensor_data_qos": any(q.profile == "sensor_data" for q in qos),
+        "system_default_qos": any(q.profile == "system_default" for q in qos),
+        "qos_profiles": any(not (q.profile or q.is_plain) for q in qos),  # built by the base class
+        "keep_all_history": any(not q.profile and q.history == "keep_all" for q in qos),
+        "reliability_policy": any(not q.profile and q.reliability != "reliable" for q in qos),
+        "durability_policy": any(not q.profile and q.durability != "volatile" for q in qos),
         "parameter_descriptors": any(p.has_descriptor for p in parameters),
         "integer_ranges": any(p.range and p.type.scalar == "int" for p in parameters),
         "float_ranges": any(p.range and p.type.scalar == "double" for p in parameters),
@@ -69,6 +75,11 @@ ROS2_PYTHON = {
                              "rclpy.lifecycle:TransitionCallbackReturn")),
     "no_action_servers": Needs(user=("rclpy.executors:SingleThreadedExecutor",)),
     "sensor_data_qos": Needs(base=("rclpy.qos:qos_profile_sensor_data",)),
+    "system_default_qos": Needs(base=("rclpy.qos:qos_profile_system_default",)),
+    "qos_profiles": Needs(base=("rclpy.qos:QoSProfile",)),
+    "keep_all_history": Needs(base=("rclpy.qos:HistoryPolicy",)),
+    "reliability_policy": Needs(base=("rclpy.qos:ReliabilityPolicy",)),
+    "durability_policy": Needs(base=("rclpy.qos:DurabilityPolicy",)),
     "action_servers": Needs(base=("rclpy.action:ActionServer", "rclpy.action:CancelResponse",
                                   "rclpy.action:GoalResponse", "rclpy.callback_groups:ReentrantCallbackGroup"),
                             user=("time", "rclpy.executors:MultiThreadedExecutor")),

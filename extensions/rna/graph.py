@@ -12,6 +12,7 @@ import re
 from collections.abc import Iterable
 from dataclasses import dataclass
 
+from . import names
 from .configs import yaml_literal
 from .interfaces import InterfaceType
 from .wording import markdown_cell, period_text
@@ -50,8 +51,12 @@ def mermaid_lines(nodes: Iterable) -> list[str]:
     vertices: dict[Vertex, str] = {}
     edges: list[tuple[str, str, str]] = []
 
+    labels: dict[tuple[str, str], Vertex] = {}
+
     def vertex(kind: str, name: str, type_) -> str:
-        key = Vertex(kind, name, type_.full_name)
+        # One vertex per name the nodes meet on (`odom` and `/odom` alike), labelled as first written.
+        met = names.graph_name(name) or f"{node.name}/{name}"
+        key = labels.setdefault((kind, met), Vertex(kind, name, type_.full_name))
         return vertices.setdefault(key, f"{kind[0]}{len(vertices)}")
 
     for index, node in enumerate(nodes):

@@ -18,17 +18,10 @@ from .definitions import Definition
 from .interfaces import InterfaceType
 from .licenses import License
 from .parameters import Parameter
+from .qos import Qos
 
 # Members the generated base classes declare besides the endpoints'.
 BASE_MEMBERS = ("node_handle", "private_node_handle", "action_callback_group")
-
-
-@dataclass(frozen=True)
-class Qos:
-    """A history depth, or a named profile of the ROS 2 client libraries."""
-
-    depth: int = 10
-    profile: str | None = None
 
 
 @dataclass(frozen=True)

@@ -281,3 +281,9 @@ def package_name_from_folder(folder: str) -> str:
     name = re.sub(r"[^a-z0-9]+", "_", name).strip("_")
     name = re.sub(r"^[0-9_]+", "", name)
     return name if package_name_error(name) is None else "my_package"
+
+
+def graph_name(name: str) -> str | None:
+    """The name endpoints meet on when every node runs in one namespace (a launch file's),
+    leading slash or not; None for a private (~) name, which meets no other node's."""
+    return None if name.startswith("~") else name.lstrip("/")

@@ -11,8 +11,8 @@ from __future__ import annotations
 import keyword
 
 from . import distros, names
+from . import qos as qos_rules
 from .answers import QUICK_LISTS
-from .answers.nodes import QOS_PROFILES
 from .definitions import SECTIONS
 from .licenses import LICENSES
 from .parameters import SCALAR_TYPES, TYPE_ALIASES
@@ -47,13 +47,20 @@ def _endpoint(kind: str, example: str) -> dict:
             "type": {"type": "string", "pattern": _TYPE},
             "id": _name(_anchored(names.SNAKE_CASE), names.IDENTIFIER_MAX,
                         "the code name, instead of one from the name"),
-            **({"qos": {"oneOf": [{"type": "integer", "minimum": 1, "maximum": 10000},
-                                  {"enum": sorted(QOS_PROFILES)}]}} if kind == "msg" else {}),
+            **({"qos": _qos()} if kind == "msg" else {}),
         },
     }
     return {"type": "array", "items": {"oneOf": [
         {"type": "string", "pattern": r"^[^:\s]+:[^:\s]+(:[^:\s]+)?$", "description": f"short form, e.g. {example}"},
         long_form]}}
+
+
+def _qos() -> dict:
+    depth = {"type": "integer", "minimum": qos_rules.DEPTH_RANGE[0], "maximum": qos_rules.DEPTH_RANGE[1]}
+    presets = {"enum": list(qos_rules.PRESETS)}
+    policies = {key: {"enum": list(allowed)} for key, allowed in qos_rules.POLICIES.items()}
+    return {"oneOf": [depth, presets, {"type": "object", "additionalProperties": False,
+                                       "properties": {"preset": presets, "depth": depth, **policies}}]}
 
 
 def _parameter() -> dict:

@@ -27,6 +27,7 @@ import yaml
 from hypothesis import assume
 from hypothesis import strategies as st
 from rna import AnswerError, build_package, catalogue, distros, names
+from rna import qos as qos_rules
 from rna.configs import yaml_literal
 from rna.licenses import LICENSES
 from rna.parameters import INT_RANGE, INT_RANGES, TYPE_ALIASES, infer_type
@@ -41,7 +42,8 @@ FITTING_IDENTIFIER_MAX = 40
 ARRAY_MAX = 3
 
 # Rules that look at several answers at once: a set drawn as valid that breaks one is redrawn.
-CROSS_ANSWER_RULES = ("both use the name", "is the name of a package its nodes use", "would shadow the Python module",
+CROSS_ANSWER_RULES = ("must agree on one type", "(give both the same qos preset)",
+                      "both use the name", "is the name of a package its nodes use", "would shadow the Python module",
                       "characters together: a C++ node's")
 
 # Text that has broken, or could break, the files free text lands in: quotes and triple
@@ -188,15 +190,31 @@ def interface_types(draw, kind: str, distro: str) -> str:
 # ----------------------------------------------------------------------------- endpoints
 
 @st.composite
+def qos_policies(draw) -> dict:
+    """The long form of a topic's qos: some policies over a preset, a depth where the history keeps one."""
+    preset = draw(st.sampled_from((None, *qos_rules.PRESETS)))
+    if preset == "system_default":
+        return {"preset": preset}  # the middleware's defaults, whole
+    qos = {key: draw(st.sampled_from(allowed)) for key, allowed in qos_rules.POLICIES.items() if draw(st.booleans())}
+    if preset:
+        qos["preset"] = preset
+    history = qos.get("history", qos_rules.PRESETS[preset or "default"].history)
+    if history == "keep_last" and draw(st.booleans()):
+        qos["depth"] = draw(st.integers(*qos_rules.DEPTH_RANGE))
+    return qos
+
+
+@st.composite
 def topics(draw, distro: str) -> dict | str:
     topic = draw(ros_names("topic"))
     item = {"topic": topic, "type": draw(interface_types("msg", distro))}
-    qos = draw(st.one_of(st.none(), st.integers(1, 10000), st.sampled_from((1, 10000, "sensor_data"))))
+    qos = draw(st.one_of(st.none(), st.integers(1, 10000), st.sampled_from((1, 10000, *qos_rules.PRESETS)),
+                         qos_policies()))
     if qos is not None:
         item["qos"] = qos
     if _needs_id(topic) or draw(st.integers(0, 4)) == 0:
         item["id"] = draw(identifiers())
-    if "id" not in item and draw(st.booleans()):  # the short form
+    if "id" not in item and not isinstance(qos, dict) and draw(st.booleans()):  # the short form
         return ":".join(str(item[key]) for key in ("topic", "type", "qos") if key in item)
     return item
 
@@ -472,7 +490,9 @@ def _break_nodes(draw, answers):
             "my_msgs/msg/" + "A" * (names.TYPE_NAME_MAX + 1), misspelt)))}]
     elif kind == "qos":
         node["publishers"] = [{"topic": "x", "type": "std_msgs/msg/String",
-                               "qos": draw(st.sampled_from((0, -1, 10001, "fast", True, 2.5)))}]
+                               "qos": draw(st.sampled_from((0, -1, 10001, "fast", True, 2.5,
+                                                            {"reliability": "sometimes"},
+                                                            {"history": "keep_all", "depth": 5}, {"colour": 1})))}]
     elif kind == "timer":
         node["timers"] = [{"name": "tick", "period": draw(st.one_of(
             st.sampled_from((0, -1, "fast", None, 86400.5, 1e9, "nan", "inf", 1e-10, 5e-324)),

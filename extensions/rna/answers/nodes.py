@@ -15,12 +15,13 @@ from dataclasses import dataclass, field
 import yaml
 
 from .. import catalogue, distros, names
+from .. import qos as qos_rules
 from ..interfaces import InterfaceType, parse_interface
-from ..model import BASE_MEMBERS, Action, Node, Qos, Service, Timer, Topic
+from ..model import BASE_MEMBERS, Action, Node, Service, Timer, Topic
+from ..qos import Qos
 from ..parameters import INT_RANGE, Parameter, ParameterType, coerce_default, infer_type, on_step, parse_type
 from ..shapes import as_list, check_keys, load_yaml
 
-QOS_PROFILES = {"sensor_data": 5}
 
 
 @dataclass(frozen=True)
@@ -50,17 +51,11 @@ def _split_short(text: str, fields: int) -> list[str]:
 
 def _parse_qos(value: object, what: str, default: object = None) -> Qos:
     if value is None or value == "":
-        return _parse_qos(default, what) if default not in (None, "") else Qos()
-    if isinstance(value, bool):
-        raise ValueError(f"{what}: qos must be a history depth (e.g. 10) or 'sensor_data'")
-    if isinstance(value, int) or (isinstance(value, str) and value.isdigit()):
-        depth = int(value)
-        if not 1 <= depth <= 10000:
-            raise ValueError(f"{what}: qos depth {depth} must be between 1 and 10000")
-        return Qos(depth)
-    if value in QOS_PROFILES:
-        return Qos(QOS_PROFILES[value], value)
-    raise ValueError(f"{what}: qos must be a history depth (e.g. 10) or 'sensor_data', not '{value}'")
+        return _parse_qos(default, what) if default not in (None, "") else qos_rules.PRESETS["default"]
+    try:
+        return qos_rules.parse(value)
+    except ValueError as error:
+        raise ValueError(f"{what}: {error}") from None
 
 
 def _parse_id(given: object, ros_name: str, what: str) -> str:
@@ -341,4 +336,30 @@ def parse_nodes(value: object, *, package: str, build_type: str, types: Types) -
         raise ValueError("give a list with at least one node")
     nodes = tuple(parse_node(item, package=package, build_type=build_type, types=types) for item in value)
     _check_unique((node.name, f"node '{node.name}'") for node in nodes)
+    _check_connections(nodes)
     return nodes
+
+
+def _check_connections(nodes: tuple[Node, ...]) -> None:
+    """The package's own nodes that share a topic, service or action agree on its type and, for topics, QoS."""
+    ends: dict[tuple[str, str], list[tuple[str, object]]] = {}
+    for node in nodes:
+        for endpoint in node.endpoints:
+            if isinstance(endpoint, Timer):
+                continue
+            name = names.graph_name(endpoint.topic if isinstance(endpoint, Topic) else endpoint.name)
+            if name is not None:
+                ends.setdefault((type(endpoint).__name__, name), []).append((node.name, endpoint))
+    for (kind, name), found in ends.items():
+        what = {"Topic": "topic", "Service": "service", "Action": "action"}[kind]
+        (first, one), *others = found
+        for other, endpoint in others:
+            if endpoint.type != one.type:
+                raise ValueError(f"{what} '{name}': node '{first}' uses {one.type.full_name} and node '{other}' "
+                                 f"{endpoint.type.full_name}: its nodes must agree on one type")
+        if kind == "Topic" and nodes[0].ros == 2:
+            publishers = [(who, t.qos) for who, t in found if t.role == "publisher"]
+            subscribers = [(who, t.qos) for who, t in found if t.role == "subscriber"]
+            for writer, reader, why in qos_rules.incompatible_pairs(publishers, subscribers):
+                raise ValueError(f"topic '{name}': node '{reader}' never hears node '{writer}': {why} "
+                                 "(give both the same qos preset)")

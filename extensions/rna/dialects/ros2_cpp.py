@@ -55,7 +55,15 @@ class Ros2Cpp(CppDialect):
 
     @staticmethod
     def qos(qos) -> str:
-        return "rclcpp::SensorDataQoS()" if qos.profile == "sensor_data" else str(qos.depth)
+        """The QoS argument: a depth, rclcpp's preset class, or rclcpp::QoS with its policies set."""
+        if qos.profile:
+            return {"sensor_data": "rclcpp::SensorDataQoS()", "system_default": "rclcpp::SystemDefaultsQoS()"}[
+                qos.profile]
+        if qos.is_plain:
+            return str(qos.depth)
+        text = "rclcpp::QoS(rclcpp::KeepAll())" if qos.history == "keep_all" else f"rclcpp::QoS({qos.depth})"
+        return (text + (".best_effort()" if qos.reliability == "best_effort" else "")
+                + (".transient_local()" if qos.durability == "transient_local" else ""))
 
     @staticmethod
     def period(timer) -> str:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from .lines import BREAK
 from .python import PythonDialect, import_block, literal
 
 
@@ -21,7 +22,27 @@ class Ros2Python(PythonDialect):
 
     @staticmethod
     def qos(qos) -> str:
-        return "qos_profile_sensor_data" if qos.profile == "sensor_data" else str(qos.depth)
+        """The qos_profile argument when it is a depth or one of rclpy's preset profiles, else ''."""
+        if qos.profile:
+            return f"qos_profile_{qos.profile}"
+        return str(qos.depth) if qos.is_plain else ""
+
+    def qos_arg(self, topic) -> str:
+        """The qos_profile argument of a topic: a depth, a preset, or the QoSProfile built before."""
+        return self.qos(topic.qos) or f"{topic.id}_qos"
+
+    @staticmethod
+    def qos_statement(topic) -> str:
+        """The statement building a topic's QoSProfile, where a depth or a preset does not say it; else ''."""
+        qos = topic.qos
+        if qos.profile or qos.is_plain:
+            return ""
+        fields = ["history=HistoryPolicy.KEEP_ALL" if qos.history == "keep_all" else f"depth={qos.depth}"]
+        if qos.reliability != "reliable":
+            fields.append(f"reliability=ReliabilityPolicy.{qos.reliability.upper()}")
+        if qos.durability != "volatile":
+            fields.append(f"durability=DurabilityPolicy.{qos.durability.upper()}")
+        return f"{topic.id}_qos = QoSProfile({BREAK}" + f",{BREAK} ".join(fields) + ")"
 
     @staticmethod
     def period(timer) -> str:

@@ -1,0 +1,141 @@
+"""Quality of service of a topic: the ROS 2 policies, their presets, and which pairs connect.
+
+An endpoint names a preset, a history depth, or a mapping of policies over a preset:
+
+    qos: sensor_data
+    qos: 20
+    qos: {preset: latched, depth: 5}
+    qos: {reliability: best_effort, history: keep_all}
+
+ROS 1 has queue sizes and latching only: depth becomes queue_size (keep_all, 0: no
+limit) and transient_local durability a latched publisher; reliability has no ROS 1
+counterpart and is left out there.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, replace
+
+# The policies an answer may set; the middleware's own defaults come whole, as system_default.
+RELIABILITY = ("reliable", "best_effort")
+DURABILITY = ("volatile", "transient_local")
+HISTORY = ("keep_last", "keep_all")
+DEPTH_RANGE = (1, 10000)
+
+
+@dataclass(frozen=True)
+class Qos:
+    """The policies of one endpoint; `preset` names the preset they equal, if any."""
+
+    depth: int = 10
+    reliability: str = "reliable"
+    durability: str = "volatile"
+    history: str = "keep_last"
+    preset: str | None = None
+
+    @property
+    def profile(self) -> str | None:
+        """A preset the client libraries name (sensor_data, system_default), else None."""
+        return self.preset if self.preset in ("sensor_data", "system_default") else None
+
+    @property
+    def latched(self) -> bool:
+        return self.durability == "transient_local"
+
+    @property
+    def queue_size(self) -> int:
+        """ROS 1's queue size: the depth, 0 (no limit) for keep_all, roscpp's usual 10 for the system's."""
+        return {"keep_all": 0, "system_default": 10}.get(self.history, self.depth)
+
+    @property
+    def is_plain(self) -> bool:
+        """Reliable, volatile, keeping the last `depth` messages: what a bare depth means to rclcpp and rclpy."""
+        return (self.reliability, self.durability, self.history) == ("reliable", "volatile", "keep_last")
+
+
+# ROS 2's presets (rmw_qos_profiles); "latched" is the usual state topic: the last value
+# kept for subscribers that join later.
+PRESETS: dict[str, Qos] = {
+    "default": Qos(preset="default"),
+    "sensor_data": Qos(depth=5, reliability="best_effort", preset="sensor_data"),
+    "latched": Qos(depth=1, durability="transient_local", preset="latched"),
+    "system_default": Qos(depth=0, reliability="system_default", durability="system_default",
+                          history="system_default", preset="system_default"),
+}
+POLICIES = {"reliability": RELIABILITY, "durability": DURABILITY, "history": HISTORY}
+KEYS = ("preset", "depth", *POLICIES)
+
+
+def _depth(value: object) -> int:
+    if isinstance(value, bool) or not (isinstance(value, int) or (isinstance(value, str) and value.isdigit())):
+        raise ValueError(f"qos depth must be a whole number, not {value!r}")
+    depth = int(value)
+    if not DEPTH_RANGE[0] <= depth <= DEPTH_RANGE[1]:
+        raise ValueError(f"qos depth {depth} must be between {DEPTH_RANGE[0]} and {DEPTH_RANGE[1]}")
+    return depth
+
+
+def _named(qos: Qos) -> Qos:
+    """The same policies, with the name of the preset they equal (or none)."""
+    plain = replace(qos, preset=None)
+    for preset in PRESETS.values():
+        if replace(preset, preset=None) == plain:
+            return preset
+    return plain
+
+
+def parse(value: object) -> Qos:
+    """An endpoint's qos answer: a preset name, a depth, or a mapping of policies over a preset."""
+    if isinstance(value, str) and value.strip() in PRESETS:
+        return PRESETS[value.strip()]
+    if isinstance(value, (int, str)) and not isinstance(value, bool):
+        try:
+            return _named(Qos(depth=_depth(value)))
+        except ValueError:
+            if isinstance(value, int) or value.strip().isdigit():
+                raise
+        raise ValueError(f"qos must be a history depth (e.g. 10) or one of {', '.join(PRESETS)}, not {value!r}")
+    if not isinstance(value, Mapping):
+        raise ValueError(f"qos must be a history depth (e.g. 10), one of {', '.join(PRESETS)}, or a mapping "
+                         f"of {', '.join(KEYS)}")
+    unknown = [key for key in value if key not in KEYS]
+    if unknown:
+        raise ValueError(f"qos has no key {unknown[0]!r}: give {', '.join(KEYS)}")
+    preset = value.get("preset", "default")
+    if preset not in PRESETS:
+        raise ValueError(f"qos preset must be one of {', '.join(PRESETS)}, not {preset!r}")
+    if preset == "system_default" and len(value) > 1:
+        raise ValueError("qos preset system_default is the middleware's defaults: give it no other key")
+    qos = PRESETS[preset]
+    for key, allowed in POLICIES.items():
+        if key in value:
+            if value[key] not in allowed:
+                raise ValueError(f"qos {key} must be one of {', '.join(allowed)}, not {value[key]!r}")
+            qos = replace(qos, **{key: value[key]})
+    if "depth" in value:
+        if qos.history != "keep_last":
+            raise ValueError(f"qos depth applies to history keep_last, not {qos.history}")
+        qos = replace(qos, depth=_depth(value["depth"]))
+    return _named(qos)
+
+
+def mismatch(publisher: Qos, subscriber: Qos) -> str | None:
+    """Why a subscription never gets this publisher's messages (ROS 2's request-offer rule), or None.
+
+    Reliable subscriptions need reliable publishers, transient-local ones transient-local
+    publishers; the middleware's defaults (system_default) are not known here, so they pass.
+    """
+    if subscriber.reliability == "reliable" and publisher.reliability == "best_effort":
+        return "it subscribes reliable and the publisher is best_effort"
+    if subscriber.durability == "transient_local" and publisher.durability == "volatile":
+        return "it subscribes transient_local and the publisher is volatile"
+    return None
+
+
+def incompatible_pairs(publishers: Iterable[tuple[str, Qos]],
+                       subscribers: Iterable[tuple[str, Qos]]) -> list[tuple[str, str, str]]:
+    """(publisher, subscriber, why) for each named pair on one topic that would not connect."""
+    publishers = list(publishers)
+    return [(who, reader, why) for reader, wanted in subscribers for who, offered in publishers
+            if (why := mismatch(offered, wanted))]
