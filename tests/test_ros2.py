@@ -214,7 +214,7 @@ def test_custom_message_service_and_action_between_nodes(workspace, package, int
                  workspace.node(package, "detector", log=f"{package}_detector")) as (mover, detector):
         mover.wait_for("Received a message on target")
         mover.wait_for("Answering a set_target request")
-        detector.wait_for(rf"set_target answered: {interfaces}\.srv\.SetTarget_Response\(accepted=False")
+        detector.wait_for(rf"set_target answered: {interfaces}\.srv\.SetTarget_Response\(accepted=True")
         mover.wait_for("Executing an approach goal")
         detector.wait_for("Feedback on the approach goal")
         detector.wait_for("The approach goal succeeded")
