@@ -139,7 +139,9 @@ def test_launch_file_runs_components_standalone_or_in_a_container(make_package):
     """container:=true loads each component, with its config, into one container instead of its executable."""
     answers = example("camera_components", nodes=[*example("camera_components")["nodes"],
                                                   {"name": "tool", "language": "cpp"}])
-    package = package_dir(make_package(answers))
+    destination = make_package(answers)
+    package = package_dir(destination)
+    assert "`container:=true`" in (destination / "README.md").read_text()
     launch = ET.parse(package / "launch" / "camera_pipeline.launch.xml").getroot()
     args = {arg.get("name"): arg.get("default") for arg in launch.iter("arg")}
     assert args == {"container": "false", "container_executable": "component_container"}
