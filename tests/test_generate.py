@@ -135,6 +135,29 @@ def test_defaults_make_a_talker_and_a_listener(make_package):
     assert set(launched_nodes(package / "launch" / "rna_demo.launch.xml")) == {"talker", "listener"}
 
 
+def test_launch_file_runs_components_standalone_or_in_a_container(make_package):
+    """container:=true loads each component, with its config, into one container instead of its executable."""
+    answers = example("camera_components", nodes=[*example("camera_components")["nodes"],
+                                                  {"name": "tool", "language": "cpp"}])
+    destination = make_package(answers)
+    package = package_dir(destination)
+    assert "`container:=true`" in (destination / "README.md").read_text()
+    launch = ET.parse(package / "launch" / "camera_pipeline.launch.xml").getroot()
+    args = {arg.get("name"): arg.get("default") for arg in launch.iter("arg")}
+    assert args == {"container": "false", "container_executable": "component_container"}
+    standalone = {node.get("exec"): node.get("unless") for node in launch.iter("node")}
+    assert standalone == {"camera": "$(var container)", "viewer": "$(var container)", "tool": None}
+    (container,) = launch.iter("node_container")
+    assert (container.get("pkg"), container.get("exec"), container.get("if")) == (
+        "rclcpp_components", "$(var container_executable)", "$(var container)")
+    loaded = {node.get("name"): (node.get("plugin"), node.find("param").get("from"))
+              for node in container.iter("composable_node")}
+    registered = {path.stem: re.search(r"RCLCPP_COMPONENTS_REGISTER_NODE\(\s*(\S+)\)", path.read_text())[1]
+                  for path in (package / "src").glob("*.cpp") if path.stem != "tool"}
+    assert loaded == {name: (registered[name], f"$(find-pkg-share camera_pipeline)/config/{name}.yaml")
+                      for name in ("camera", "viewer")}
+
+
 @pytest.mark.parametrize("spdx", ["Apache-2.0", "BSD-3-Clause", "MIT", "GPL-3.0-or-later", "LGPL-3.0-or-later"])
 def test_license_choice_writes_license_and_headers(make_package, spdx):
     package = package_dir(make_package({"license": spdx, "build_type": "ament_cmake", "package_name": "lic",

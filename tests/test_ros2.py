@@ -43,6 +43,12 @@ TRACKER_SAME["nodes"][1]["subscribers"] = ["target:Target"]
 # camera -> detector -> controller: the detector publishes from its subscription's callback.
 DATA_CHAIN = example("data_chain")
 
+# A server whose timer publishes every 50 ms, with a service and an action whose starter goal
+# is made to last about a second: what must go on while a goal runs.
+BUSY = {"package_name": "busy_robot", "build_type": "ament_python", "nodes": [
+    {"name": "server", "publishers": ["beat:std_msgs/msg/Int32"], "timers": [0.05],
+     "service_servers": ["reset:std_srvs/srv/Trigger"], "action_servers": ["fibonacci:test_msgs/action/Fibonacci"]}]}
+
 # Every kind of Python node, with fast timers so that a SIGINT often lands mid-callback.
 STOPPABLE = example("every_python_node")
 
@@ -91,6 +97,9 @@ def workspace(ros2, template_dir, tmp_path_factory) -> Workspace:
     generate(template_dir, path / "src" / "tracker_same", TRACKER_SAME)
     generate(template_dir, path / "src" / "stoppable", STOPPABLE)
     generate(template_dir, path / "src" / "data_chain", DATA_CHAIN)
+    generate(template_dir, path / "src" / "busy_robot", BUSY)
+    server = path / "src" / "busy_robot" / "busy_robot" / "busy_robot" / "server.py"
+    server.write_text(server.read_text().replace("for _ in range(3):", "for _ in range(10):"))
     # Nodes added to packages written by hand (an ament_python and an ament_cmake one).
     add_node(template_dir, existing_packages.ament_python(path / "src" / "hand_robot"),
              {"node_name": "listener", "node_subscribers": "chatter:std_msgs/msg/String"})
@@ -171,6 +180,21 @@ def test_server_stopped_during_a_goal_exits_cleanly(workspace):
                  workspace.node("robot_services", "client", log="client_mid_goal")) as (server, client):
         client.wait_for("Feedback on the fibonacci goal")
         stop_all(server, client)
+
+
+def test_a_goal_holds_up_none_of_the_servers_callbacks_and_can_be_canceled(workspace):
+    """Goals run in threads of their own: the timer and services go on, cancel requests are served."""
+    with started(workspace.node("busy_robot", "server")) as (server,):
+        measured = json.loads(workspace.probe("busy_goal", "/fibonacci", "/reset", "/beat"))
+        stop_all(server)
+    assert measured["accepted"] and measured["succeeded"], measured
+    assert measured["goal_seconds"] > 0.8, measured  # the goal really ran for about a second
+    # Bounds far above the 50 ms timer and a prompt answer, far below the goal's length,
+    # so that a loaded machine does not fail the test but a blocked executor does.
+    assert measured["messages"] >= 5, measured
+    assert measured["largest_gap"] < 0.5, measured
+    assert measured["service_seconds"] < 0.5, measured
+    assert measured["cancel_accepted"] and measured["canceled"], measured
 
 
 def test_parameters_come_from_the_config_file_and_the_command_line(workspace):

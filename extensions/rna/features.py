@@ -35,7 +35,6 @@ def node_features(node) -> frozenset[str]:
         "services": bool(node.service_servers or node.service_clients),
         "actions": bool(node.actions),
         "action_servers": bool(node.action_servers),
-        "no_action_servers": not node.action_servers,
         "action_clients": bool(node.action_clients),
         "sensor_data_qos": any(q.profile == "sensor_data" for q in qos),
         "system_default_qos": any(q.profile == "system_default" for q in qos),
@@ -60,6 +59,8 @@ ROS2_CPP = {
     "timers": Needs(base=("<chrono>",)),
     "services": Needs(base=("<memory>",)),
     "actions": Needs(("rclcpp_action",), ("<memory>", "rclcpp_action/rclcpp_action.hpp")),
+    # Each goal in a thread of its own (the base's start_goal_thread()).
+    "action_servers": Needs(base=("<chrono>", "<functional>", "<future>", "<list>", "<mutex>", "<utility>")),
     "action_clients": Needs(base=("<atomic>",)),
     "parameter_descriptors": Needs(("rcl_interfaces",), ("rcl_interfaces/msg/parameter_descriptor.hpp",)),
     "string_parameters": Needs(base=("<string>",)),
@@ -69,20 +70,21 @@ ROS2_CPP = {
 ROS2_PYTHON = {
     # signal: the base module's CtrlC, which main() uses.
     "node": Needs(("rclpy",), ("signal",), ("rclpy", "rclpy.executors:ExternalShutdownException",
+                                            "rclpy.executors:SingleThreadedExecutor",
                                             "rclpy.signals:SignalHandlerOptions")),
     "plain": Needs(base=("rclpy.node:Node",)),
     "lifecycle": Needs(base=("rclpy.lifecycle:Node", "rclpy.lifecycle:State",
                              "rclpy.lifecycle:TransitionCallbackReturn")),
-    "no_action_servers": Needs(user=("rclpy.executors:SingleThreadedExecutor",)),
     "sensor_data_qos": Needs(base=("rclpy.qos:qos_profile_sensor_data",)),
     "system_default_qos": Needs(base=("rclpy.qos:qos_profile_system_default",)),
     "qos_profiles": Needs(base=("rclpy.qos:QoSProfile",)),
     "keep_all_history": Needs(base=("rclpy.qos:HistoryPolicy",)),
     "reliability_policy": Needs(base=("rclpy.qos:ReliabilityPolicy",)),
     "durability_policy": Needs(base=("rclpy.qos:DurabilityPolicy",)),
-    "action_servers": Needs(base=("rclpy.action:ActionServer", "rclpy.action:CancelResponse",
-                                  "rclpy.action:GoalResponse", "rclpy.callback_groups:ReentrantCallbackGroup"),
-                            user=("time", "rclpy.executors:MultiThreadedExecutor")),
+    # threading and Future: each goal runs in a thread of its own (the base's _in_goal_thread).
+    "action_servers": Needs(base=("threading", "rclpy.action:ActionServer", "rclpy.action:CancelResponse",
+                                  "rclpy.action:GoalResponse", "rclpy.task:Future"),
+                            user=("time",)),
     # GoalStatus, to report how a goal ended.
     "action_clients": Needs(("action_msgs",), ("rclpy.action:ActionClient",), ("action_msgs.msg:GoalStatus",)),
     "parameter_descriptors": Needs(("rcl_interfaces",), ("rcl_interfaces.msg:ParameterDescriptor",)),

@@ -21,7 +21,7 @@ from .parameters import Parameter
 from .qos import Qos
 
 # Members the generated base classes declare besides the endpoints'.
-BASE_MEMBERS = ("node_handle", "private_node_handle", "action_callback_group")
+BASE_MEMBERS = ("node_handle", "private_node_handle", "start_goal_thread", "goal_threads", "goal_threads_mutex")
 
 
 @dataclass(frozen=True)
@@ -103,7 +103,7 @@ class Action:
     def callbacks(self) -> dict[str, str]:
         if self.role == "server":
             return {"goal": f"on_{self.id}_goal", "cancel": f"on_{self.id}_cancel",
-                    "execute": f"execute_{self.id}"}
+                    "execute": f"execute_{self.id}", "run": f"run_{self.id}_goal"}
         return {"send": f"send_{self.id}_goal", "goal_response": f"on_{self.id}_goal_response",
                 "feedback": f"on_{self.id}_feedback", "result": f"on_{self.id}_result",
                 "done": f"_on_{self.id}_done"}

@@ -3,6 +3,10 @@
 Run with the ROS venv's Python (the test process itself has no rclpy):
   ros2_probe.py params NODE NAME...            print {name: value} as JSON
   ros2_probe.py lifecycle NODE TRANSITION...   drive a lifecycle node, print each new state
+  ros2_probe.py busy_goal ACTION SERVICE TOPIC
+      during a test_msgs/Fibonacci goal to ACTION, time the std_msgs/Int32 messages on
+      TOPIC and a std_srvs/Trigger call to SERVICE; then cancel a second goal mid-way;
+      print what was measured as JSON
 Exits non-zero when the node does not answer.
 """
 
@@ -10,12 +14,19 @@ from __future__ import annotations
 
 import json
 import sys
+import time
 
+from action_msgs.msg import GoalStatus
 import rclpy
+from rclpy.action import ActionClient
+from rclpy.executors import SingleThreadedExecutor
 from lifecycle_msgs.msg import Transition
 from lifecycle_msgs.srv import ChangeState
 from rcl_interfaces.msg import ParameterType
 from rcl_interfaces.srv import GetParameters
+from std_msgs.msg import Int32
+from std_srvs.srv import Trigger
+from test_msgs.action import Fibonacci
 
 TIMEOUT = 15.0
 
@@ -61,12 +72,65 @@ def lifecycle(node, target, transitions):
         print(f"{target}: {label} done", flush=True)
 
 
+def busy_goal(node, action, names):
+    service, topic = names
+    executor = SingleThreadedExecutor()
+    executor.add_node(node)
+    arrivals = []
+    node.create_subscription(Int32, topic, lambda _: arrivals.append(time.monotonic()), 10)
+    client = ActionClient(node, Fibonacci, action)
+    trigger = node.create_client(Trigger, service)
+    if not (client.wait_for_server(timeout_sec=TIMEOUT) and trigger.wait_for_service(timeout_sec=TIMEOUT)):
+        sys.exit(f"{action} or {service} is not available")
+
+    def until(future, within=TIMEOUT):
+        deadline = time.monotonic() + within
+        while not future.done() and time.monotonic() < deadline:
+            executor.spin_once(timeout_sec=0.01)
+        if not future.done():
+            sys.exit(f"no answer within {within} s")
+        return future.result()
+
+    def pause(seconds):
+        deadline = time.monotonic() + seconds
+        while time.monotonic() < deadline:
+            executor.spin_once(timeout_sec=0.01)
+
+    # A goal run to its end, with a service call in the middle.
+    goal = until(client.send_goal_async(Fibonacci.Goal(order=5)))
+    start = time.monotonic()
+    pause(0.3)
+    called = time.monotonic()
+    until(trigger.call_async(Trigger.Request()))
+    service_seconds = time.monotonic() - called
+    status = until(goal.get_result_async()).status
+    end = time.monotonic()
+    during = [start, *(t for t in arrivals if start <= t <= end), end]
+    gaps = [later - earlier for earlier, later in zip(during, during[1:], strict=False)]
+
+    # A goal canceled in the middle.
+    second = until(client.send_goal_async(Fibonacci.Goal(order=5)))
+    pause(0.3)
+    canceling = until(second.cancel_goal_async()).goals_canceling
+    canceled = until(second.get_result_async()).status
+    print(json.dumps({
+        "accepted": goal.accepted and second.accepted,
+        "goal_seconds": end - start,
+        "succeeded": status == GoalStatus.STATUS_SUCCEEDED,
+        "messages": len(during) - 2,
+        "largest_gap": max(gaps),
+        "service_seconds": service_seconds,
+        "cancel_accepted": len(canceling) == 1,
+        "canceled": canceled == GoalStatus.STATUS_CANCELED,
+    }))
+
+
 def main():
     command, target, *rest = sys.argv[1:]
     rclpy.init()
     node = rclpy.create_node("rna_test_probe")
     try:
-        {"params": params, "lifecycle": lifecycle}[command](node, target, rest)
+        {"params": params, "lifecycle": lifecycle, "busy_goal": busy_goal}[command](node, target, rest)
     finally:
         node.destroy_node()
         rclpy.try_shutdown()

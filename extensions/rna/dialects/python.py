@@ -20,8 +20,8 @@ from .lines import splittable
 # Names the generated Python files import or define besides interface types.
 RESERVED = frozenset({
     "ActionClient", "ActionServer", "CancelResponse", "ExternalShutdownException",
-    "FloatingPointRange", "GoalResponse", "GoalStatus", "IntegerRange", "MultiThreadedExecutor",
-    "Node", "ParameterDescriptor", "ReentrantCallbackGroup", "State", "TransitionCallbackReturn",
+    "FloatingPointRange", "Future", "GoalResponse", "GoalStatus", "IntegerRange", "Node",
+    "ParameterDescriptor", "SingleThreadedExecutor", "State", "TransitionCallbackReturn",
 })
 
 # Starter code's values for a std_msgs `data` field, changing with a counter.
