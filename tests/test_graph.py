@@ -59,8 +59,14 @@ def test_parameter_rows_stay_one_line_whatever_the_default():
 
 def test_endpoints_and_timers_read_as_what_the_node_does():
     node = package(**example("tracker")).nodes[0]
-    assert graph.endpoint_rows(node)[0] == ("publishes", "`targets`", "`tracker_interfaces/msg/TargetArray`")
-    assert graph.endpoint_rows(node)[-1] == ("timer", "`timer`", "every 0.2 s")
+    assert graph.endpoint_rows(node)[0] == ("publishes", "`targets`", "`tracker_interfaces/msg/TargetArray`",
+                                            "default (depth 10)")
+    assert graph.endpoint_rows(node)[-1] == ("timer", "`timer`", "every 0.2 s", "")
+    chain = package(**example("data_chain")).nodes
+    assert [row[3] for row in graph.endpoint_rows(chain[1])] == [
+        "default (depth 10)", "transient_local, depth 5", "sensor_data"]
+    ros1 = package(**example("robot_ros1"), build_type="catkin").nodes[0]
+    assert [row[3] for row in graph.endpoint_rows(ros1)][:4] == ["queue 10", "queue 10", "queue 1, latched", "queue 10"]
 
 
 def test_interfaces_show_their_parts():
@@ -73,6 +79,6 @@ def test_the_generated_readme_shows_the_graph_and_the_tables(template_dir, tmp_p
     generate(template_dir, destination, example("tracker"))
     text = (destination / "README.md").read_text()
     assert "```mermaid\nflowchart LR\n" in text
-    assert "### mover\n\n| Through | Name | Type |" in text
+    assert "### mover\n\n| Through | Name | Type | QoS |" in text
     assert "`tracker_interfaces`, a package beside this one" in text
     assert not table_rows_of_wrong_width(text)

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from . import names
 from .configs import yaml_literal
 from .interfaces import InterfaceType
+from .qos import describe as qos_words
 from .wording import markdown_cell, period_text
 
 
@@ -87,15 +88,17 @@ def markdown_code(text: str) -> str:
     return f"{fence}{padded}{fence}".replace("|", "\\|")
 
 
-def endpoint_rows(node) -> list[tuple[str, str, str]]:
-    """(what, name, type or period) for each thing the node talks through, as README table cells."""
+def endpoint_rows(node) -> list[tuple[str, str, str, str]]:
+    """(what, name, type or period, QoS) for each thing the node talks through, as README table cells."""
     rows = []
     for label, topics in (("publishes", node.publishers), ("subscribes to", node.subscribers)):
-        rows.extend((label, markdown_code(t.topic), markdown_code(t.type.full_name)) for t in topics)
+        rows.extend((label, markdown_code(t.topic), markdown_code(t.type.full_name),
+                     qos_words(t.qos) if node.ros == 2 else f"queue {t.qos.queue_size}"
+                     + (", latched" if t.qos.latched and t.role == "publisher" else "")) for t in topics)
     for label, endpoints in (("serves", node.service_servers), ("calls", node.service_clients),
                              ("executes goals of", node.action_servers), ("sends goals to", node.action_clients)):
-        rows.extend((label, markdown_code(e.name), markdown_code(e.type.full_name)) for e in endpoints)
-    rows.extend(("timer", markdown_code(t.id), period_text(t.period)) for t in node.timers)
+        rows.extend((label, markdown_code(e.name), markdown_code(e.type.full_name), "") for e in endpoints)
+    rows.extend(("timer", markdown_code(t.id), period_text(t.period), "") for t in node.timers)
     return rows
 
 

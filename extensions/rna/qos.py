@@ -54,6 +54,14 @@ class Qos:
         return (self.reliability, self.durability, self.history) == ("reliable", "volatile", "keep_last")
 
 
+def describe(qos: Qos) -> str:
+    """The QoS in a few words, for the package README: its preset, or its policies."""
+    if qos.preset:
+        return qos.preset if qos.preset != "default" else "default (depth 10)"
+    kept = "keep_all" if qos.history == "keep_all" else f"depth {qos.depth}"
+    return ", ".join(p for p in (qos.reliability, qos.durability, kept) if p not in ("reliable", "volatile")) or kept
+
+
 # ROS 2's presets (rmw_qos_profiles); "latched" is the usual state topic: the last value
 # kept for subscribers that join later.
 PRESETS: dict[str, Qos] = {
