@@ -50,6 +50,7 @@ try:
     import rna.lab
     import rna.layout
     import rna.names
+    import rna.update.refusals
     import rna.update.resolve
     import rna.wording
     import rna.workspace
@@ -76,6 +77,9 @@ def answer_error(context, question: str) -> str:
     if error is None and question == "node_name" and context.get("target") == "node":
         taken = _files_in_the_way(context, context.get("node_name"), rna.distros.languages(context.get("build_type")))
         error = f"{taken[0]} is already in the package: choose another name" if taken else None
+    if error is None and (previous := _previous_answers(context)) is not None:
+        refused = rna.update.refusals.switch_error(previous, context)
+        error = refused.message if refused and refused.question == question else None
     return _under_the_prompt(question, error) if error else ""
 
 
@@ -361,7 +365,9 @@ class PackageContext(ContextHook):
             _check_given_answers(context)
             return
         previous = _previous_answers(context)
-        if previous is not None:  # an update: nodes given without a language keep theirs
+        if previous is not None:  # an update (the first render in the project comes before any write)
+            _refuse_switch(previous, context)
+            # nodes given without a language keep theirs
             rna.update.resolve.keep_languages(context.get("nodes"), previous)
         answers = {key: context.get(key) for key in (*rna.answers.QUESTIONS, "copyright_year")}
         key = json.dumps([answers, str((context.get('_copier_conf') or {}).get('dst_path'))],
@@ -373,6 +379,12 @@ class PackageContext(ContextHook):
                 raise UserMessageError(f"rna-template: {error}") from None
             _refuse_to_overwrite(_models[key], context)
         context["package"] = _models[key]
+
+
+def _refuse_switch(previous: Mapping, answers: Mapping) -> None:
+    refused = rna.update.refusals.switch_error(previous, answers)
+    if refused is not None:
+        raise UserMessageError(f"rna-template: {refused}")
 
 
 def _previous_answers(context) -> dict | None:
@@ -409,6 +421,9 @@ def _check_given_answers(context) -> None:
     """
     conf = context.get("_copier_conf") or {}
     given = conf.get("data") or {}
+    previous = _previous_answers(context) if "ros_distro" in given else None
+    if previous is not None:  # before any other answer is read in the light of the new distro
+        _refuse_switch(previous, given)
     key = json.dumps(given, sort_keys=True, default=str)
     if not given or key in _checked:
         return

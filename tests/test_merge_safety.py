@@ -27,6 +27,7 @@ from catkin_pkg.package import parse_package
 
 if "support.template_repo" not in sys.modules:  # its asserts explain themselves too
     pytest.register_assert_rewrite("support.template_repo")
+from support.generation import git  # noqa: E402
 from support.template_repo import (  # noqa: E402
     FLAVORS, NEW_VERSION, OLD_VERSION, PACKAGE, Flavor, answers_of, append_after, broken_packages, commit_all,
     conflict_excerpts, conflict_regions, conflicted_files, conflicts_of, find_node, insert_before, kept_of,
@@ -708,3 +709,34 @@ def test_a_real_config_conflict_is_loud_whatever_the_conflict_mode(project, flav
         text = (destination / path).read_text()
         assert "max_speed: 0.9" in text and "timeout: 0.5" in text, f"--conflict {mode}: the rest is merged\n{text}"
         assert "# the frame of the lidar" in text and "stop_distance: 0.3  # mine" in text, text
+
+
+# ─── Switching ROS generation ─────────────────────────────────────────────────
+# ROS 1 and ROS 2 packages differ in every file (layout, client library, build system), so
+# an update cannot convert one into the other: it is refused before anything is written,
+# naming the question, the rule and what to do instead.
+
+SWITCHES = {
+    "ament_python-to-noetic": ("ament_python", {"ros_distro": "noetic"}),
+    "ament_cmake-to-noetic": ("ament_cmake", {"ros_distro": "noetic"}),
+    "catkin-to-jazzy": ("catkin", {"ros_distro": "jazzy", "build_type": "ament_cmake"}),
+}
+
+
+@pytest.mark.parametrize("case", SWITCHES)
+def test_a_switch_of_ros_generation_is_refused_before_anything_is_written(project, case):
+    flavor_name, change = SWITCHES[case]
+    flavor = Flavor(flavor_name)
+    destination = project(flavor_name)
+    lived_in(destination, flavor)
+    head = git("rev-parse", "HEAD", cwd=destination).stdout
+
+    result = run_update(destination, {**change, "nodes": with_languages(flavor, flavor.answers["nodes"])})
+
+    assert result.returncode != 0, f"the update went ahead\n{result}"
+    refusals = [line for line in result.output.splitlines() if line.startswith("rna-template: ")]
+    assert len(refusals) == 1, f"no one-line refusal\n{result}"
+    assert "'ros_distro'" in refusals[0] and "ROS 1" in refusals[0] and "copier copy" in refusals[0], refusals[0]
+    assert git("status", "--porcelain", "--untracked-files=all", cwd=destination).stdout == "", (
+        f"the refused update wrote files\n{result}")
+    assert git("rev-parse", "HEAD", cwd=destination).stdout == head

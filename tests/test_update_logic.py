@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from rna.update import blocks, config_merge, merge, resolve
+from rna.update import blocks, config_merge, merge, refusals, resolve
 
 ROS2_CONFIG = "/**:\n  ros__parameters:\n    # Gain\n    gain: {gain}\n\n    frame_id: {frame}\n\n"
 
@@ -139,3 +139,15 @@ def test_real_conflicts_stay_marked():
     assert merge.merge3("a\nmine\nb\n", "a\nb\n", "a\nnew\nb\n")[1]
     # the user edited a line the template deletes
     assert merge.merge3("a\nmine\nb\n", "a\nold\nb\n", "a\nb\n")[1]
+
+
+def test_a_switch_of_ros_generation_is_refused_with_what_to_do():
+    ros2 = {"ros_distro": "jazzy", "build_type": "ament_cmake"}
+    error = refusals.switch_error({"ros_distro": "noetic"}, ros2)
+    assert error is not None and error.question == "ros_distro"
+    assert "ROS 1" in str(error) and "ROS 2" in str(error) and "copier copy" in str(error)
+    assert "nothing was written" in str(error) and "\n" not in str(error)
+    assert refusals.switch_error(ros2, {"ros_distro": "noetic"}).question == "ros_distro"
+    assert refusals.switch_error(ros2, {**ros2, "ros_distro": "humble"}) is None  # another ROS 2 distro
+    assert refusals.switch_error(ros2, {**ros2, "build_type": "ament_python"}) is None  # a conversion the update makes
+    assert refusals.switch_error({}, ros2) is None and refusals.switch_error({"ros_distro": None}, ros2) is None

@@ -1,0 +1,33 @@
+"""Answer changes an update refuses before it writes anything.
+
+Each check compares the answers being updated (the project's answers file) with the new
+ones and returns the AnswerError to stop on: one line naming the question, the rule and
+what to do instead.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+from .. import distros
+from ..answers import AnswerError
+
+GENERATIONS = {1: "ROS 1", 2: "ROS 2"}
+
+
+def switch_error(previous: Mapping, answers: Mapping) -> AnswerError | None:
+    """A change between ROS 1 and ROS 2, which no update can make.
+
+    The two generations differ in every file (layout, client library, launch format, build
+    system): converting a package the user wrote code in would leave it half ROS 1, half
+    ROS 2. A build type change within ROS 2 is not refused: the update makes it (the user's
+    node files stay, an edited build file is kept and named).
+    """
+    before, after = previous.get("ros_distro"), answers.get("ros_distro")
+    if not before or not after or distros.generation(before) == distros.generation(after):
+        return None
+    old, new = GENERATIONS[distros.generation(before)], GENERATIONS[distros.generation(after)]
+    return AnswerError("ros_distro", (
+        f"{after} is {new} and this package is {old} ({before}): an update cannot move a package "
+        f"between ROS 1 and ROS 2 (nothing was written). Keep ros_distro {before}, or generate a "
+        f"{new} package beside this one (copier copy) and move your code into it"))
