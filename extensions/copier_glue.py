@@ -313,6 +313,7 @@ class RnaExtension(Extension):
             absolute_source=absolute_source,
             answers_yaml=answers_yaml,
             resolved_answers=rna.update.resolve.resolved,
+            answers_checksum=rna.update.resolve.checksum,
             dialect=rna.dialects.dialect,
             driver_docstring=rna.wording.driver_docstring,
             fit_cpp=functools.partial(rna.dialects.lines.fit, language="cpp"),
@@ -361,6 +362,7 @@ class PackageContext(ContextHook):
     """Adds `package`, the checked model of all answers, to every template render."""
 
     def hook(self, context):
+        _refuse_hand_edited_answers(context)
         if str(context.get("_copier_phase")) != "render":
             _check_given_answers(context)
             return
@@ -385,6 +387,28 @@ def _refuse_switch(previous: Mapping, answers: Mapping) -> None:
     refused = rna.update.refusals.switch_error(previous, answers)
     if refused is not None:
         raise UserMessageError(f"rna-template: {refused}")
+
+
+def _refuse_hand_edited_answers(context) -> None:
+    """An update of an answers file edited by hand would change nothing: stop first."""
+    conf = context.get("_copier_conf") or {}
+    if str(context.get("_copier_operation")) != "update" or conf.get("dst_path") is None:
+        return
+    path = Path(conf["dst_path"], conf.get("answers_file") or ".copier-answers.yml")
+    try:
+        stat = path.stat()
+    except OSError:
+        return
+    if _edited_by_hand(str(path), stat.st_mtime_ns, stat.st_size):
+        raise UserMessageError(f"rna-template: {rna.update.refusals.hand_edit_error(conf.get('answers_file'))}")
+
+
+@functools.lru_cache(maxsize=8)
+def _edited_by_hand(path: str, _mtime_ns: int, _size: int) -> bool:
+    try:
+        return rna.update.resolve.edited_by_hand(Path(path).read_text(encoding="utf-8")) is True
+    except OSError:
+        return False
 
 
 def _previous_answers(context) -> dict | None:

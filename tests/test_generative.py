@@ -25,6 +25,7 @@ from copier.errors import UserMessageError
 from hypothesis import example, given
 from rna import build_package, distros
 from rna.parameters import INT_RANGES
+from rna.update import resolve
 from support.generation import copy_template
 from support.packages import table_rows_of_wrong_width
 from support.strategies import invalid_answers, read_data_file, valid_answers, write_data_file
@@ -104,7 +105,9 @@ def test_a_valid_answer_set_gives_files_that_read_back(template, answers):
         package = destination / model.name
         files = [path for path in destination.rglob("*") if path.is_file()]
         # The answers file is what `copier update` starts from: it must give the same package.
-        assert build_package(yaml.safe_load((destination / ".copier-answers.yml").read_text(encoding="utf-8"))) == model
+        recorded = (destination / ".copier-answers.yml").read_text(encoding="utf-8")
+        assert build_package(yaml.safe_load(recorded)) == model
+        assert resolve.edited_by_hand(recorded) is False, "its checksum does not match the answers it holds"
 
         python = []
         for path in files:

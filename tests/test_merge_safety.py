@@ -740,3 +740,39 @@ def test_a_switch_of_ros_generation_is_refused_before_anything_is_written(projec
     assert git("status", "--porcelain", "--untracked-files=all", cwd=destination).stdout == "", (
         f"the refused update wrote files\n{result}")
     assert git("rev-parse", "HEAD", cwd=destination).stdout == head
+
+
+# ─── Answers changed by hand ──────────────────────────────────────────────────
+# Copier renders the old version from the answers file: edited by hand, it would take the
+# edits as the package's old answers and change nothing. The update stops before writing.
+
+HAND_EDITS = {
+    "a-parameter-added": ("    - limit:int=5\n", "    - limit:int=5\n    - timeout:double=0.5\n"),
+    "the-description": ("\ndescription: ", "\ndescription: Mine. "),
+}
+
+
+@pytest.mark.parametrize("edit", HAND_EDITS)
+def test_an_answers_file_edited_by_hand_stops_the_update_with_the_safe_way(project, edit):
+    destination = project("ament_python")
+    replace_text(destination / ".copier-answers.yml", *HAND_EDITS[edit])
+    commit_all(destination, "answers edited by hand")
+    head = git("rev-parse", "HEAD", cwd=destination).stdout
+
+    result = run_update(destination)
+
+    assert result.returncode != 0, f"the update went ahead\n{result}"
+    refusals = [line for line in result.output.splitlines() if line.startswith("rna-template: ")]
+    assert len(refusals) == 1 and ".copier-answers.yml" in refusals[0] and "--data" in refusals[0], result
+    assert git("status", "--porcelain", "--untracked-files=all", cwd=destination).stdout == "", result
+    assert git("rev-parse", "HEAD", cwd=destination).stdout == head
+
+
+def test_answers_changed_through_the_update_are_not_taken_for_hand_edits(project):
+    destination = project("ament_python")
+    nodes = with_languages(Flavor("ament_python"), Flavor("ament_python").answers["nodes"])
+    find_node(nodes, "driver").setdefault("parameters", []).append("timeout:double=0.5")
+    assert run_update(destination, {"nodes": nodes}).returncode == 0
+    commit_all(destination, "a parameter")
+    result = run_update(destination, {"description": "Drives the robot, and more"})
+    assert result.returncode == 0, result

@@ -151,3 +151,30 @@ def test_a_switch_of_ros_generation_is_refused_with_what_to_do():
     assert refusals.switch_error(ros2, {**ros2, "ros_distro": "humble"}) is None  # another ROS 2 distro
     assert refusals.switch_error(ros2, {**ros2, "build_type": "ament_python"}) is None  # a conversion the update makes
     assert refusals.switch_error({}, ros2) is None and refusals.switch_error({"ros_distro": None}, ros2) is None
+
+
+ANSWERS_TEXT = ("# Written by Copier: change answers with `copier update`, never by hand (see README.md).\n"
+                "# rna-template checksum of the answers below: {checksum}\n"
+                "_commit: v0.2.0\n_src_path: /templates/rna\ndescription: Drives the robot\n"
+                "nodes:\n-   language: python\n    name: driver\npackage_name: robot\n")
+RECORDED = {"_commit": "v0.2.0", "_src_path": "/elsewhere", "description": "Drives the robot",
+            "nodes": [{"language": "python", "name": "driver"}], "package_name": "robot"}
+
+
+def test_an_answers_file_edited_by_hand_is_told_from_one_copier_wrote():
+    text = ANSWERS_TEXT.format(checksum=resolve.checksum(RECORDED))  # Copier's own keys do not count
+    assert resolve.edited_by_hand(text) is False
+    reformatted = text.replace("-   language: python\n    name: driver\n", "- {name: driver, language: python}\n")
+    assert resolve.edited_by_hand(reformatted + "# a comment of mine\n") is False  # the same answers
+    assert resolve.edited_by_hand(text.replace("/templates/rna", "/moved/rna")) is False  # the template moved
+    assert resolve.edited_by_hand(text.replace("Drives the robot", "Drives the rover")) is True
+    assert resolve.edited_by_hand(text.replace("name: driver", "name: driver\n    timers: [0.1]")) is True
+    assert resolve.edited_by_hand(text.replace("robot\n", "robot\ninterfaces: {}\n", 1)) is True
+    assert resolve.edited_by_hand(ANSWERS_TEXT.replace("# rna-template checksum", "# other")) is None  # 0.2.0
+    assert resolve.edited_by_hand("nodes: [") is None
+
+
+def test_a_hand_edited_answers_file_is_refused_with_the_safe_way():
+    error = refusals.hand_edit_error(".copier-answers.yml")
+    assert ".copier-answers.yml" in error and "--data" in error and "nothing was written" in error
+    assert "\n" not in error

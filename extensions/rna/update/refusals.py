@@ -1,8 +1,8 @@
 """Answer changes an update refuses before it writes anything.
 
 Each check compares the answers being updated (the project's answers file) with the new
-ones and returns the AnswerError to stop on: one line naming the question, the rule and
-what to do instead.
+ones and returns the error to stop on: one line naming the question (or the file), the
+rule and what to do instead.
 """
 
 from __future__ import annotations
@@ -31,3 +31,12 @@ def switch_error(previous: Mapping, answers: Mapping) -> AnswerError | None:
         f"{after} is {new} and this package is {old} ({before}): an update cannot move a package "
         f"between ROS 1 and ROS 2 (nothing was written). Keep ros_distro {before}, or generate a "
         f"{new} package beside this one (copier copy) and move your code into it"))
+
+
+def hand_edit_error(answers_file: str) -> str:
+    """The answers file was edited by hand (resolve.edited_by_hand): Copier would take the
+    edited answers for the package's old ones, render nothing new and exit 0."""
+    return (f"{answers_file} was edited by hand (its answers no longer match the checksum the template wrote), "
+            f"so this update would change nothing (nothing was written). Restore it as the last update left it "
+            f"(git log -p {answers_file}), commit, and give the changed answers to the update instead: "
+            f"copier update --trust --data question=value, or --data-file changes.yml")

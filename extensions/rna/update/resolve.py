@@ -10,13 +10,25 @@ Python nodes turned C++. So:
   being updated, so the answers files of versions that did not record it (0.1.0, 0.2.0)
   and `--data nodes=...` written as the docs show mean what they meant
   (`keep_languages()`); a new node gets the build type's default.
+
+The answers file also records a checksum of its answers (`checksum()`): Copier renders
+the old version from that file, so answers edited there by hand would be taken for the
+package's old answers and the update would change nothing; `edited_by_hand()` tells.
 """
 
 from __future__ import annotations
 
+import hashlib
+import json
+import re
 from collections.abc import Mapping
 
+import yaml
+
 from .. import distros
+
+CHECKSUM_LINE = "# rna-template checksum of the answers below: "
+_CHECKSUM = re.compile(r"^" + re.escape(CHECKSUM_LINE) + r"([0-9a-f]+)\s*$", re.MULTILINE)
 
 
 def build_type_of(answers: Mapping) -> str:
@@ -79,3 +91,26 @@ def keep_languages(nodes: object, previous: Mapping) -> list[str]:
             continue
         kept.append(name)
     return kept
+
+
+def checksum(answers: Mapping) -> str:
+    """A checksum of the answers (Copier's own `_` keys left out: `_src_path` may move)."""
+    recorded = {key: value for key, value in answers.items() if not str(key).startswith("_")}
+    text = json.dumps(recorded, sort_keys=True, ensure_ascii=True, default=str)
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()[:16]
+
+
+def edited_by_hand(text: str) -> bool | None:
+    """Whether an answers file's answers differ from those its checksum was made of.
+
+    None when it cannot tell: no checksum (written by 0.2.0 or older) or no YAML mapping.
+    Layout and comments do not count; only the answers they read as.
+    """
+    found = _CHECKSUM.search(text)
+    try:
+        answers = yaml.safe_load(text)
+    except yaml.YAMLError:
+        return None
+    if found is None or not isinstance(answers, dict):
+        return None
+    return checksum(answers) != found.group(1)
