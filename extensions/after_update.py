@@ -18,7 +18,7 @@ import yaml
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 from rna import Package, build_package  # noqa: E402 - the template's own package, next to this file
-from rna.update import blocks, config_merge, merge, protect  # noqa: E402
+from rna.update import blocks, config_merge, drift, merge, protect  # noqa: E402
 from rna.update.project import Project, Render, render  # noqa: E402
 from rna.update.summary import Report, changes, summary  # noqa: E402
 
@@ -64,6 +64,7 @@ def main(answers_file: str, project_root: Path | None = None, template: Path = H
         if None not in packages:
             user_files = set(packages[0].user_files) | set(packages[1].user_files)
             protect.refresh_untouched_starters(project, old, new, user_files, report)
+            drift.port_edited_user_files(project, old, new, packages, report)
         merge.settle_conflicts(project, old, new, report, skip=config_merge.CONFIG)
         config_merge.merge_config_files(project, old, new, packages, report)
         blocks.leave_out_user_declarations(project, new, report)

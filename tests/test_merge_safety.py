@@ -31,7 +31,7 @@ from support.generation import git  # noqa: E402
 from support.template_repo import (  # noqa: E402
     FLAVORS, NEW_VERSION, OLD_VERSION, PACKAGE, Flavor, answers_of, append_after, broken_packages, commit_all,
     conflict_excerpts, conflict_regions, conflicted_files, conflicts_of, find_node, insert_before, kept_of,
-    missing_block, replace_text, run_update, write_new_file,
+    missing_block, replace_text, run_update, to_port_of, write_new_file,
 )
 
 pytest_plugins = ("support.template_repo",)
@@ -776,3 +776,54 @@ def test_answers_changed_through_the_update_are_not_taken_for_hand_edits(project
     commit_all(destination, "a parameter")
     result = run_update(destination, {"description": "Drives the robot, and more"})
     assert result.returncode == 0, result
+
+
+# ─── What an edited user file must follow ─────────────────────────────────────
+# The user's class builds on its base class: when the answers change what it builds on (a
+# callback's message type, lifecycle, the license in its header), the update names the
+# file and writes the new starter beside it, under a name build tools and linters skip.
+
+
+def retype_odom(flavor: Flavor, nodes: list[dict]) -> list[dict]:
+    driver = find_node(nodes, "driver")
+    driver["subscribers"] = ["odom:geometry_msgs/msg/PoseStamped"]
+    return nodes
+
+
+def lifecycle_driver(flavor: Flavor, nodes: list[dict]) -> list[dict]:
+    find_node(nodes, "driver")["lifecycle"] = True
+    return nodes
+
+
+def changed_nodes(change: Callable[[Flavor, list[dict]], list[dict]]) -> Callable[[Flavor], dict]:
+    return lambda flavor: {"nodes": change(flavor, with_languages(flavor, flavor.answers["nodes"]))}
+
+
+DRIFTS = {
+    **{f"{name}-callback-message-type": (name, changed_nodes(retype_odom), "PoseStamped now") for name in FLAVORS},
+    **{f"{name}-lifecycle-switched-on": (name, changed_nodes(lifecycle_driver), "lifecycle")
+       for name in ("ament_python", "ament_cmake")},
+    **{f"{name}-license": (name, lambda f: {"license": "MIT", **changed_nodes(lambda _, nodes: nodes)(f)}, "MIT")
+       for name in FLAVORS},
+}
+
+
+@pytest.mark.parametrize("case", DRIFTS)
+def test_an_edited_user_file_is_told_what_to_follow_with_the_new_starter_beside_it(project, case):
+    flavor_name, answers, why = DRIFTS[case]
+    flavor = Flavor(flavor_name)
+    destination = project(flavor_name)
+    edits = lived_in(destination, flavor)
+    path = flavor.user_file("driver")
+
+    result = run_update(destination, answers(flavor))
+
+    assert result.returncode == 1, f"the update did not stop for the user to port {path}\n{result}"
+    to_port = to_port_of(result.output)
+    assert path in to_port and why in to_port[path], f"{path} is not named with {why!r}\n{result}"
+    starter = destination / f"{path}.new-starter"
+    assert starter.is_file() and starter.name in to_port[path], result
+    assert starter.read_text() != (destination / path).read_text()
+    assert edits.problems() == [], "\n".join(edits.problems())
+    assert broken_packages(destination) == [], result
+    assert not conflicted_files(destination), conflict_excerpts(destination)

@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from rna.update import blocks, config_merge, merge, refusals, resolve
+import rna
+from rna.update import blocks, config_merge, drift, merge, refusals, resolve
 
 ROS2_CONFIG = "/**:\n  ros__parameters:\n    # Gain\n    gain: {gain}\n\n    frame_id: {frame}\n\n"
 
@@ -178,3 +179,35 @@ def test_a_hand_edited_answers_file_is_refused_with_the_safe_way():
     error = refusals.hand_edit_error(".copier-answers.yml")
     assert ".copier-answers.yml" in error and "--data" in error and "nothing was written" in error
     assert "\n" not in error
+
+
+def robot(license: str = "Apache-2.0", **driver) -> rna.Package:
+    return rna.build_package({
+        "package_name": "robot", "description": "x", "maintainer": "Ada", "maintainer_email": "ada@example.com",
+        "license": license, "copyright_holder": "Ada", "copyright_year": 2026, "ros_distro": "jazzy",
+        "build_type": "ament_cmake", "target": "package", "interfaces": {},
+        "nodes": [{"name": "driver", "language": "cpp", "subscribers": ["odom:nav_msgs/msg/Odometry"],
+                   "service_servers": ["reset:std_srvs/srv/Trigger"], **driver}]})
+
+
+USER_CODE = "void on_odom(const Odometry & msg) override { last_x_ = msg.pose.pose.position.x; }"
+
+
+def test_what_an_edited_user_file_must_follow():
+    old = robot()
+    assert drift.reasons(old, old, "driver", USER_CODE) == []
+    pose = robot(subscribers=["odom:geometry_msgs/msg/PoseStamped"])
+    [reason] = drift.reasons(old, pose, "driver", USER_CODE)
+    assert "on_odom" in reason and "geometry_msgs/msg/PoseStamped" in reason and "nav_msgs/msg/Odometry" in reason
+    assert drift.reasons(old, pose, "driver", "int main() {}") == []  # the user's code does not override it
+    reset = robot(service_servers=["reset:std_srvs/srv/Empty"])
+    assert drift.reasons(old, reset, "driver", "void on_reset_request(") != []
+    assert "lifecycle" in " ".join(drift.reasons(old, robot(lifecycle=True), "driver", USER_CODE))
+    assert "lifecycle" in " ".join(drift.reasons(robot(lifecycle=True), old, "driver", USER_CODE))
+    assert "component" in " ".join(drift.reasons(old, robot(component=True), "driver", USER_CODE))
+    [license] = drift.reasons(old, robot("MIT"), "driver", USER_CODE)
+    assert "MIT" in license and "Apache-2.0" in license
+    [gone] = drift.reasons(old, robot(subscribers=[]), "driver", USER_CODE)  # an override of nothing
+    assert "on_odom" in gone and "no longer" in gone
+    assert drift.reasons(old, robot(subscribers=[]), "driver", "int main() {}") == []
+    assert drift.STARTER_SUFFIX not in (".py", ".cpp", ".hpp", ".h", ".txt")

@@ -1,0 +1,81 @@
+"""User files whose base class changed in a way their code depends on.
+
+A node's user file is the user's once edited: the update never rewrites it. When the
+answers change what that code builds on (the message type of a callback it overrides, a
+callback it overrides that is gone, lifecycle or component switched, the license its
+header states), the update says so in its summary and writes the new starter beside the
+file, under a name no build tool or linter picks up, for the user to compare and port.
+"""
+
+from __future__ import annotations
+
+import posixpath
+import re
+
+from ..model import Node, Package
+from .project import Project, Render
+from .protect import edited
+from .summary import Report
+
+# `driver.cpp.new-starter`: CMake builds the sources it is given, setuptools installs
+# modules (*.py), and the linters (flake8, cpplint, uncrustify, copyright) go by extension.
+STARTER_SUFFIX = ".new-starter"
+
+
+def _node(package: Package, name: str) -> Node | None:
+    return next((node for node in package.nodes if node.name == name), None)
+
+
+def _endpoints(node: Node) -> dict[tuple, object]:
+    return {(type(endpoint).__name__, getattr(endpoint, "role", None), endpoint.id): endpoint
+            for endpoint in node.endpoints}
+
+
+def _used(methods, code: str) -> list[str]:
+    return [method for method in methods if method and re.search(rf"\b{re.escape(method)}\b", code)]
+
+
+def reasons(old: Package, new: Package, name: str, code: str) -> list[str]:
+    """What node `name`'s user code (`code`) must follow, one short line each."""
+    before, after = _node(old, name), _node(new, name)
+    if before is None or after is None or before.language != after.language:
+        return []  # a node gone or rewritten in another language: its file is kept (protect.py)
+    found = []
+    now = _endpoints(after)
+    for key, endpoint in _endpoints(before).items():
+        used = _used(endpoint.methods, code)
+        if not used:
+            continue
+        changed = now.get(key)
+        if changed is None:
+            found.append(f"the {endpoint.label} is no longer in the answers, and your code overrides "
+                         f"{', '.join(used)}")
+        elif getattr(endpoint, "type", None) != getattr(changed, "type", None):
+            found.append(f"the {endpoint.label} is {changed.type} now, not {endpoint.type}: "
+                         f"port {', '.join(used)}")
+    if before.lifecycle != after.lifecycle:
+        found.append("it is a lifecycle node now" if after.lifecycle else "it is no longer a lifecycle node")
+    if before.component != after.component:
+        found.append("it is a component now" if after.component else "it is no longer a component")
+    if old.license.spdx != new.license.spdx:
+        found.append(f"the license is {new.license.spdx} now: its header still says {old.license.spdx}")
+    return found
+
+
+def port_edited_user_files(project: Project, old: Render, new: Render, packages: tuple[Package, Package],
+                           report: Report) -> None:
+    """Name each edited user file that must follow a change, with the new starter beside it."""
+    old_package, new_package = packages
+    for node in new_package.nodes:
+        before = _node(old_package, node.name)
+        if before is None or before.language != node.language:
+            continue
+        path = posixpath.normpath(posixpath.join(new_package.dir, node.user_file))
+        code = project.text(path)
+        if code is None or path not in new.files or not edited(project, old, path):
+            continue  # an untouched starter follows the template itself (protect.py)
+        found = reasons(old_package, new_package, node.name, code)
+        if found:
+            starter = path + STARTER_SUFFIX
+            project.write(starter, new.text(path))
+            report.to_port.append((path, "; ".join(found) + f" (the new starter: {starter.rsplit('/', 1)[-1]})"))
