@@ -2,7 +2,7 @@
 
 A node's user file is the user's once edited: the update never rewrites it. When the
 answers change what that code builds on (the message type of a callback it overrides, a
-callback it overrides that is gone, lifecycle or component switched, the license its
+C++ callback it overrides that is gone, lifecycle or component switched, the license its
 header states), the update says so in its summary and writes the new starter beside the
 file, under a name no build tool or linter picks up, for the user to compare and port.
 """
@@ -47,10 +47,10 @@ def reasons(old: Package, new: Package, name: str, code: str) -> list[str]:
         if not used:
             continue
         changed = now.get(key)
-        if changed is None:
+        if changed is None and after.is_cpp:  # `override` of nothing no longer compiles; in Python it is dead code
             found.append(f"the {endpoint.label} is no longer in the answers, and your code overrides "
                          f"{', '.join(used)}")
-        elif getattr(endpoint, "type", None) != getattr(changed, "type", None):
+        elif changed is not None and getattr(endpoint, "type", None) != getattr(changed, "type", None):
             found.append(f"the {endpoint.label} is {changed.type} now, not {endpoint.type}: "
                          f"port {', '.join(used)}")
     if before.lifecycle != after.lifecycle:
