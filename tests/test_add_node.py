@@ -148,7 +148,9 @@ def test_the_added_node_grows_with_copier_update(template_dir, tmp_path):
     _git(package, "add", "-A")
     _git(package, "commit", "-qm", "the listener node, edited")
 
-    grown = "[{name: listener, subscribers: [chatter:std_msgs/msg/String], publishers: [pose:geometry_msgs/msg/Pose]}]"
+    # Grown: what it had (the starter overrides its timer's callback) and a publisher.
+    grown = ("[{name: listener, subscribers: [chatter:std_msgs/msg/String], timers: [1.0],"
+             " publishers: [heard:std_msgs/msg/Int32, pose:geometry_msgs/msg/Pose]}]")
     result = subprocess.run([COPIER, "update", "--trust", "--defaults", "--answers-file",
                              ".copier-answers.rna-listener.yml", f"--data=nodes={grown}"],
                             cwd=package, capture_output=True, text=True, stdin=subprocess.DEVNULL, timeout=300)
