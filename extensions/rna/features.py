@@ -53,8 +53,9 @@ def node_features(node) -> frozenset[str]:
 
 ROS2_CPP = {
     "node": Needs(("rclcpp",), ("rclcpp/rclcpp.hpp",), ("rclcpp/rclcpp.hpp", "<memory>")),
-    "lifecycle": Needs(("rclcpp_lifecycle",),
-                       ("rclcpp_lifecycle/lifecycle_node.hpp", "rclcpp_lifecycle/lifecycle_publisher.hpp")),
+    "lifecycle": Needs(("lifecycle_msgs", "rclcpp_lifecycle"),
+                       ("lifecycle_msgs/msg/state.hpp", "rclcpp_lifecycle/lifecycle_node.hpp",
+                        "rclcpp_lifecycle/lifecycle_publisher.hpp")),
     "component": Needs(("rclcpp_components",), user=("rclcpp_components/register_node_macro.hpp",)),
     "timers": Needs(base=("<chrono>",)),
     "services": Needs(base=("<memory>",)),
