@@ -10,6 +10,7 @@ from __future__ import annotations
 import json
 import random
 import re
+import signal
 import subprocess
 import warnings
 import xml.etree.ElementTree as ET
@@ -229,6 +230,36 @@ def test_lifecycle_node_publishes_once_activated(workspace):
         listener.wait_for(r'I heard: "Hello World: \d+"')
         workspace.probe("lifecycle", "beacon", "deactivate", "cleanup")
         stop_all(beacon, listener)
+
+
+@pytest.mark.parametrize("package", ["stoppable", "robot_beacons"])  # ament_python, ament_cmake
+@pytest.mark.parametrize("transitions", [(), ("configure",), ("configure", "activate")],
+                         ids=["unconfigured", "inactive", "active"])
+def test_lifecycle_node_stopped_by_sigint_shuts_down_through_its_lifecycle(workspace, package, transitions):
+    """Ctrl-C in any primary state: the node is finalized (seen from another process), exits 0, says nothing."""
+    state = transitions[-1] if transitions else "unconfigured"
+    with started(workspace.node(package, "beacon", log=f"{package}_beacon_sigint_{state}")) as (beacon,):
+        if transitions:
+            workspace.probe("lifecycle", "beacon", *transitions)
+        watcher = NodeProcess([str(workspace.ros2.python), str(PROBE), "transitions", "beacon"], env=workspace.env,
+                              log_path=workspace.logs / f"{package}_beacon_watch_{state}.log")
+        with started(watcher):
+            watcher.wait_for("watching")
+            assert_clean_exit(beacon, beacon.interrupt())
+            assert watcher.wait() == 0, watcher.output
+        assert "beacon: shuttingdown -> finalized" in watcher.output
+        assert not re.search(r"\[(WARN|ERROR)\]", beacon.output), beacon.output
+
+
+@pytest.mark.parametrize("transitions", [(), ("configure", "activate")], ids=["unconfigured", "active"])
+def test_lifecycle_node_stopped_by_sigterm_exits_quietly(workspace, transitions):
+    state = transitions[-1] if transitions else "unconfigured"
+    with started(workspace.node("stoppable", "beacon", log=f"beacon_sigterm_{state}")) as (beacon,):
+        if transitions:
+            workspace.probe("lifecycle", "beacon", *transitions)
+        beacon.popen.send_signal(signal.SIGTERM)
+        assert_clean_exit(beacon, beacon.wait())
+        assert not re.search(r"\[(WARN|ERROR)\]", beacon.output), beacon.output
 
 
 @pytest.mark.parametrize(("package", "interfaces"), [("tracker", "tracker_interfaces"),

@@ -7,6 +7,8 @@ Run with the ROS venv's Python (the test process itself has no rclpy):
       during a test_msgs/Fibonacci goal to ACTION, time the std_msgs/Int32 messages on
       TOPIC and a std_srvs/Trigger call to SERVICE; then cancel a second goal mid-way;
       print what was measured as JSON
+  ros2_probe.py transitions NODE               print "watching" once it hears NODE's transition
+                                               events, then each one until NODE is finalized
 Exits non-zero when the node does not answer.
 """
 
@@ -20,7 +22,7 @@ from action_msgs.msg import GoalStatus
 import rclpy
 from rclpy.action import ActionClient
 from rclpy.executors import SingleThreadedExecutor
-from lifecycle_msgs.msg import Transition
+from lifecycle_msgs.msg import State, Transition, TransitionEvent
 from lifecycle_msgs.srv import ChangeState
 from rcl_interfaces.msg import ParameterType
 from rcl_interfaces.srv import GetParameters
@@ -125,12 +127,35 @@ def busy_goal(node, action, names):
     }))
 
 
+def transitions(node, target, _):
+    finalized = []
+
+    def on_event(event):
+        print(f"{target}: {event.start_state.label} -> {event.goal_state.label}", flush=True)
+        if event.goal_state.id == State.PRIMARY_STATE_FINALIZED:
+            finalized.append(event)
+
+    subscription = node.create_subscription(TransitionEvent, f"/{target}/transition_event", on_event, 10)
+    deadline = time.monotonic() + TIMEOUT
+    while subscription.get_publisher_count() == 0:
+        if time.monotonic() > deadline:
+            sys.exit(f"{target} publishes no transition events")
+        rclpy.spin_once(node, timeout_sec=0.1)
+    print("watching", flush=True)
+    deadline = time.monotonic() + TIMEOUT
+    while not finalized:
+        if time.monotonic() > deadline:
+            sys.exit(f"{target} was not finalized")
+        rclpy.spin_once(node, timeout_sec=0.1)
+
+
 def main():
     command, target, *rest = sys.argv[1:]
     rclpy.init()
     node = rclpy.create_node("rna_test_probe")
     try:
-        {"params": params, "lifecycle": lifecycle, "busy_goal": busy_goal}[command](node, target, rest)
+        {"params": params, "lifecycle": lifecycle, "busy_goal": busy_goal,
+         "transitions": transitions}[command](node, target, rest)
     finally:
         node.destroy_node()
         rclpy.try_shutdown()
