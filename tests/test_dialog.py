@@ -146,6 +146,16 @@ def test_lifecycle_and_component_are_switched_on_and_off_within_the_rules():
     assert "Lifecycle node: yes" in script.menus[2] and "Component (rclcpp_components): yes" in script.menus[3]
 
 
+def test_autostart_is_offered_to_lifecycle_nodes_and_goes_with_lifecycle():
+    script = Script(["Edit talker", "Lifecycle node: no", "Configured and activated", "Done with", "Edit talker",
+                     "Lifecycle node: yes", "Done with", "Done"])
+    nodes = dialog.Dialog([{"name": "talker"}], rules("ament_python"), script).run()
+    assert nodes == [{"name": "talker", "language": "python"}]
+    assert not any("autostart" in choice for choice in script.menus[1])  # not a lifecycle node yet
+    assert "Configured and activated by the launch file (autostart): yes" in script.menus[3]
+    assert not any("autostart" in choice for choice in script.menus[6])  # no longer one
+
+
 def test_ros1_types_and_long_forms_kept():
     """A catkin node names ROS 1 types; endpoints written as mappings stay as they are, and can go."""
     script = Script(["Edit driver", "Remove subscriber", "Add a publisher", "odom", "nav_msgs/Odometr",

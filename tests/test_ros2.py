@@ -255,6 +255,7 @@ def test_lifecycle_node_stopped_by_sigint_shuts_down_through_its_lifecycle(works
 def test_lifecycle_node_stopped_by_sigterm_exits_quietly(workspace, transitions):
     state = transitions[-1] if transitions else "unconfigured"
     with started(workspace.node("stoppable", "beacon", log=f"beacon_sigterm_{state}")) as (beacon,):
+        workspace.probe("params", "beacon", "use_sim_time")  # up, and rclpy handles SIGTERM
         if transitions:
             workspace.probe("lifecycle", "beacon", *transitions)
         beacon.popen.send_signal(signal.SIGTERM)

@@ -6,13 +6,23 @@ import math
 
 import pytest
 import yaml
-from rna import build_package, configs, names
+from rna import build_package, configs, distros, names
 from rna.dialects import Ros1Cpp, Ros1Python, Ros2Cpp, Ros2Python, cpp, python
 from rna.interfaces import InterfaceType, parse_interface
 from rna.licenses import LICENSES
 from rna.parameters import ParameterType, coerce_default, infer_type, on_step, parse_type
 from rna.replies import replies
 from support.generation import VALID, example
+
+
+@pytest.mark.parametrize(("distro", "refused"), [("jazzy", False), ("kilted", False), ("rolling", False),
+                                                ("humble", True), (None, False)])
+def test_autostart_follows_the_distros_launch_ros(distro, refused):
+    """<lifecycle_node autostart> is in XML launch files from Jazzy on; no distro (yet) refuses nothing."""
+    error = distros.autostart_error(distro)
+    assert bool(error) == refused
+    if refused:
+        assert "humble" in error and "jazzy" in error
 
 
 @pytest.mark.parametrize("name", ["turtlesim", "my_robot2", "a1", "target_tracking"])

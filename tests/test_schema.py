@@ -43,6 +43,7 @@ def test_every_example_follows_the_schema_and_says_so(validator, name):
     {"nodes": [{"name": "a", "publishers": ["cmd vel:geometry_msgs/msg/Twist"]}]},
     {"nodes": [{"name": "a", "publisher": []}]},
     {"nodes": [{"name": "a", "timers": [0]}]},
+    {"nodes": [{"name": "a", "autostart": True}]},
     {"interfaces": {"messages": [{"name": "target", "fields": ["float64 x"]}]}},
     {"unknown_question": 1},
 ])

@@ -55,7 +55,8 @@ PARAMETER_TYPES = (*SCALAR_TYPES, *(f"{scalar}[]" for scalar in SCALAR_TYPES))
 # Offered first in a type list: the packages most nodes use.
 COMMON_PACKAGES = ("std_msgs", "geometry_msgs", "sensor_msgs", "nav_msgs", "std_srvs", "example_interfaces")
 
-FLAGS = {"lifecycle": "Lifecycle node", "component": "Component (rclcpp_components)"}
+FLAGS = {"lifecycle": "Lifecycle node", "autostart": "Configured and activated by the launch file (autostart)",
+         "component": "Component (rclcpp_components)"}
 BACK = "(empty: back)"  # a name left empty adds nothing
 ADD_NODE = "Add a node"
 DONE = "Done"
@@ -306,20 +307,23 @@ class Dialog:
                 self._change(node, what, not node.get(what))
 
     def flags(self, node: Mapping) -> list[str]:
-        """The yes/no keys a node may change here: ROS 2 nodes, and components in C++."""
+        """The yes/no keys a node may change here: ROS 2 nodes, autostart for lifecycle nodes, components in C++."""
         if self.rules.types.ros != 2:
             return []
-        return ["lifecycle", "component"] if node.get("language") == "cpp" or node.get("component") else ["lifecycle"]
+        flags = ["lifecycle", "autostart"] if node.get("lifecycle") else ["lifecycle"]
+        return flags + ["component"] if node.get("language") == "cpp" or node.get("component") else flags
 
     def _change(self, node: dict, key: str, value: object) -> None:
         """Set one key, unless the node would then break a rule: then say which, and keep it."""
-        error = self.rules.node_error({**node, key: value})
+        changed = {**node, key: value}
+        if key == "lifecycle" and value is False:
+            changed.pop("autostart", None)  # only a lifecycle node is started that way
+        error = self.rules.node_error(changed)
         if error:
             self.ask.say(error)
-        elif value is False:
-            node.pop(key, None)
-        else:
-            node[key] = value
+            return
+        node.clear()
+        node.update((name, item) for name, item in changed.items() if item is not False)
 
     def _rename(self, node: dict) -> str:
         others = [other["name"] for other in self.nodes if other is not node]

@@ -17,6 +17,9 @@ BUILD_TYPES_OF = {2: ("ament_cmake", "ament_python"), 1: ("catkin",)}
 BUILDS_INTERFACES = ("ament_cmake", "catkin")
 LANGUAGES = {"cpp": "cpp", "c++": "cpp", "python": "python", "py": "python"}
 LANGUAGE_NAMES = {"cpp": "C++", "python": "Python"}
+# Distributions whose launch_ros has <lifecycle_node autostart="true"> in XML launch files
+# (Jazzy from launch_ros 0.26.12, Kilted from 0.28.6); Humble's has no lifecycle_node element.
+AUTOSTART_DISTROS = ("jazzy", "kilted", "rolling")
 
 
 def generation(distro: object) -> int:
@@ -35,6 +38,14 @@ def default_language(build_type: str) -> str:
 def node_language(build_type: str, asked: object) -> str:
     """The language of a node answered at the prompt: the one asked when the build type holds it."""
     return asked if asked in languages(build_type) else default_language(build_type)
+
+
+def autostart_error(distro: object) -> str | None:
+    """Why a lifecycle node cannot be configured and activated by the launch file, or None."""
+    if distro is None or distro in AUTOSTART_DISTROS:
+        return None
+    return (f"autostart needs launch_ros's <lifecycle_node autostart=\"true\">, which {distro}'s XML launch files "
+            f"lack ({', '.join(AUTOSTART_DISTROS)} have it): drive the node's transitions from another process")
 
 
 def language_error(build_type: str, language: str) -> str | None:

@@ -157,6 +157,7 @@ class Node:
     ros: int = 2
     description: str = ""
     lifecycle: bool = False
+    autostart: bool = False  # the launch file configures and activates it
     component: bool = False
     publishers: tuple[Topic, ...] = ()
     subscribers: tuple[Topic, ...] = ()

@@ -96,6 +96,7 @@ def _node() -> dict:
             "language": {"enum": sorted(distros.LANGUAGES)},
             "description": _text("what the node does"),
             "lifecycle": {"type": "boolean"},
+            "autostart": {"type": "boolean"},
             "component": {"type": "boolean"},
             "publishers": _endpoint("msg", "cmd_vel:geometry_msgs/msg/Twist"),
             "subscribers": _endpoint("msg", "odom:nav_msgs/msg/Odometry"),
@@ -106,6 +107,9 @@ def _node() -> dict:
             "timers": {"type": "array", "items": timer},
             "parameters": _parameter(),
         },
+        # The launch file configures and activates lifecycle nodes only.
+        "if": {"required": ["autostart"], "properties": {"autostart": {"const": True}}},
+        "then": {"required": ["lifecycle"], "properties": {"lifecycle": {"const": True}}},
     }
     return {"type": "array", "minItems": 1, "items": {"oneOf": [
         {"type": "string", "pattern": _anchored(names.SNAKE_CASE)}, node]}}

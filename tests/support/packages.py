@@ -45,10 +45,10 @@ def dependency_names(package_xml: Path) -> set[str]:
 
 
 def launched_nodes(launch_file: Path) -> dict[str, str]:
-    """executable -> the params file each <node> of the launch file loads (ROS 2 or ROS 1)."""
+    """executable -> the params file each <node> (or <lifecycle_node>) of the launch file loads (ROS 2 or ROS 1)."""
     root = ET.parse(launch_file).getroot()
     nodes = {}
-    for node in root.iter("node"):
+    for node in [*root.iter("node"), *root.iter("lifecycle_node")]:
         if node.get("exec"):
             nodes[node.get("exec")] = node.find("param").get("from")
         else:

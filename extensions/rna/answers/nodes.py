@@ -226,7 +226,7 @@ def _check_unique(items: Iterable[tuple[str, str]]) -> None:
         seen[name] = label
 
 
-_NODE_KEYS = ("name", "language", "description", "lifecycle", "component", "publishers", "subscribers",
+_NODE_KEYS = ("name", "language", "description", "lifecycle", "autostart", "component", "publishers", "subscribers",
               "service_servers", "service_clients", "action_servers", "action_clients", "timers",
               "parameters")
 
@@ -252,7 +252,7 @@ def parse_node(item: object, *, package: str, build_type: str, types: Types) -> 
         if error:
             raise ValueError(error)
         flags = {}
-        for flag in ("lifecycle", "component"):
+        for flag in ("lifecycle", "autostart", "component"):
             flags[flag] = item.get(flag, False)
             if not isinstance(flags[flag], bool):
                 raise ValueError(f"{flag} must be true or false")
@@ -260,6 +260,10 @@ def parse_node(item: object, *, package: str, build_type: str, types: Types) -> 
             raise ValueError("lifecycle and component nodes are ROS 2 features")
         if flags["component"] and language != "cpp":
             raise ValueError("components are C++ nodes (rclcpp_components)")
+        if flags["autostart"] and not flags["lifecycle"]:
+            raise ValueError("autostart is for lifecycle nodes: set lifecycle: true as well")
+        if flags["autostart"] and distros.autostart_error(types.distro):
+            raise ValueError(distros.autostart_error(types.distro))
         description = item.get("description") or ""
         if description and names.one_line_error(description):
             raise ValueError(f"description: {names.one_line_error(description)}")
@@ -272,6 +276,7 @@ def parse_node(item: object, *, package: str, build_type: str, types: Types) -> 
             ros=ros,
             description=description.strip(),
             lifecycle=flags["lifecycle"],
+            autostart=flags["autostart"],
             component=flags["component"],
             publishers=tuple(_parse_topic(x, "publisher", types)
                              for x in as_list(item.get("publishers"), "publishers")),
