@@ -141,6 +141,9 @@ def transitions(node, target, _):
         if time.monotonic() > deadline:
             sys.exit(f"{target} publishes no transition events")
         rclpy.spin_once(node, timeout_sec=0.1)
+    settle = time.monotonic() + 1.0  # the node's side of discovery may lag behind this one's
+    while time.monotonic() < settle:
+        rclpy.spin_once(node, timeout_sec=0.1)
     print("watching", flush=True)
     deadline = time.monotonic() + TIMEOUT
     while not finalized:
