@@ -322,6 +322,11 @@ class Package:
         return distros.generation(self.ros_distro)
 
     @property
+    def offers_autostart(self) -> bool:
+        """Its launch file can configure and activate lifecycle nodes (distros.autostart_error)."""
+        return distros.autostart_error(self.ros_distro) is None
+
+    @property
     def dir(self) -> str:
         """The package folder within the destination: the destination itself for a node."""
         return layout.package_dir(self.name, self.target)
