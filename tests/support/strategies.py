@@ -142,6 +142,26 @@ def _needs_id(ros_name: str) -> bool:
     return not derived[:1].isalpha() or bool(names.too_long(derived, FITTING_IDENTIFIER_MAX))
 
 
+@functools.cache
+def type_names() -> st.SearchStrategy[str]:
+    """A CamelCase type name (rna.names.CAMEL_CASE), often as long as allowed."""
+    words = st.lists(st.tuples(st.sampled_from(string.ascii_uppercase),
+                               st.text(string.ascii_lowercase + string.digits, max_size=9)).map("".join),
+                     min_size=1, max_size=12).map("".join)
+    long = st.integers(2, names.TYPE_NAME_MAX).flatmap(
+        lambda size: words.map(lambda name: (name * (size // len(name) + 1))[:size]))
+    return st.one_of(st.from_regex(names.CAMEL_CASE, fullmatch=True), words, long).filter(
+        lambda name: len(name) <= names.TYPE_NAME_MAX and names.is_camel_case(name)
+        and names.type_name_error(name) is None)
+
+
+def _fitting(name: str, package: str, kind: str) -> str | None:
+    """`name`, shortened until its C++ header path fits (rna.names.header_path_error)."""
+    while name and names.header_path_error(package, kind, name):
+        name = name[:-1]
+    return name if name and names.type_name_error(name) is None else None
+
+
 # ----------------------------------------------------------------------------- text
 
 @functools.cache
@@ -182,12 +202,11 @@ def interface_types(draw, kind: str, distro: str, own: OwnInterfaces | None = No
         package = draw(st.one_of(st.sampled_from(("my_msgs", "robot_interfaces")), snake_case(30, min_size=2).filter(
             lambda name: names.package_name_error(name) is None)))
         name = draw(st.one_of(
-            st.from_regex(names.CAMEL_CASE, fullmatch=True).filter(lambda text: len(text) <= names.TYPE_NAME_MAX),
+            type_names(),
             # Names the generated files use themselves, or that another package has too.
             st.sampled_from(("Node", "State", "String", "Time", "Duration", "Parameter", "Empty", "Goal",
                              "Log", "Twist", "Feedback", "Result", "Request", "Response"))))
-        if names.type_name_error(name) or names.header_path_error(package, kind, name):
-            name = "Thing"
+        name = _fitting(name, package, kind) or "Thing"
     # ROS 1 users may keep the ROS 2 spelling; both may leave the kind out.
     short = ros == 1 or draw(st.booleans())
     return f"{package}/{name}" if short and draw(st.booleans()) else f"{package}/{kind}/{name}"
@@ -212,19 +231,20 @@ _FIELD_LINES = ("float64 x", "int32 count", "string frame_id", "bool ok", "uint8
 @st.composite
 def own_interfaces(draw, ros: int, home: str) -> tuple[dict, OwnInterfaces]:
     """(the `interfaces` answer: a few messages, services and actions with plain fields, the names drawn)."""
-    type_names = st.one_of(
-        st.from_regex(names.CAMEL_CASE, fullmatch=True).filter(lambda text: len(text) <= names.TYPE_NAME_MAX),
-        st.sampled_from(("Target", "Set", "Go", "State", "Node", "Goal")))
-    drawn = draw(st.lists(type_names, min_size=1, max_size=4, unique_by=names.camel_to_snake))
+    drawn = draw(st.lists(st.one_of(type_names(), st.sampled_from(("Target", "Set", "Go", "State", "Node", "Goal"))),
+                          min_size=1, max_size=4))
     kinds = {"messages": "msg", "services": "srv", "actions": "action"}
     answer: dict = {}
     by_kind: dict[str, list[str]] = {"msg": [], "srv": [], "action": []}
     fields = st.lists(st.sampled_from(_FIELD_LINES), min_size=0, max_size=2, unique_by=lambda line: line.split()[1])
+    stems = set()
     for name in drawn:
         key = draw(st.sampled_from(tuple(kinds)))
         kind = kinds[key]
-        if names.type_name_error(name) or names.header_path_error(home, kind, name):
+        name = _fitting(name, home, kind)
+        if name is None or names.camel_to_snake(name) in stems:
             continue
+        stems.add(names.camel_to_snake(name))
         sections = {"msg": ("fields",), "srv": ("request", "response"), "action": ("goal", "result", "feedback")}
         entry = {"name": name, **{section: draw(fields) for section in sections[kind]}}
         answer.setdefault(key, []).append(entry)
