@@ -269,8 +269,8 @@ def report(failures: list[Failure], drawn_count: int, root: Path) -> str:
             parts.append(f"\n=== {number}. {failure.linter.name} on {failure.drawn.destination.name}: the same "
                          f"complaints as another failure above ({exact})")
             continue
-        part = [f"\n=== {number}. {failure.linter.name} on {failure.drawn.destination.name} "
-                f"({'; '.join(failure.notes) or 'as drawn'})"]
+        notes = failure.notes or ["reduced" if failure.reduced is not None else "not reduced"]
+        part = [f"\n=== {number}. {failure.linter.name} on {failure.drawn.destination.name} ({'; '.join(notes)})"]
         if failure.reduced is not None:
             reduced = root / f"failure{number}.reduced.yml"
             reduced.write_text(_yaml(failure.reduced), encoding="utf-8")
