@@ -155,8 +155,9 @@ def fit_line(line: str, language: str, inside: bool = False) -> list[str]:
             continue
         lines.append(current.rstrip())
         # uncrustify indents what continues an expression (after '<<', '&&'...) once more
-        # than what continues a list (after '(' or ',') or a qualified name (after '::').
-        if language == "cpp" and index > 0 and not lines[-1].endswith((",", "(", "::")):
+        # than what continues a list (after '(' or ','), a qualified name (after '::') or a
+        # string literal cut in pieces.
+        if language == "cpp" and index > 0 and marker != SPLIT and not lines[-1].endswith((",", "(", "::")):
             indent += step
         current = " " * indent + piece.lstrip()
     lines.append(current)
