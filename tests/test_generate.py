@@ -251,3 +251,36 @@ def test_a_ros1_python_node_with_nothing_to_wire_is_valid_python(make_package):
     for path in package.rglob("*.py"):
         compile(path.read_text(), str(path), "exec")
     compile((package / "scripts" / "waiter.py").read_text(), "waiter.py", "exec")
+
+
+@pytest.mark.parametrize("ros_distro", ["jazzy", "noetic"])
+def test_a_long_message_variable_and_type_alias_break_within_99_columns(make_package, ros_distro):
+    """`<id>_msg = <PackageType>()` with a 40-character id and a type aliased by its long package's name
+    (found by the drawn packages under ament_flake8: 110 columns)."""
+    long_id = "d7ncnlqt860r1ckfk2jy0tnm92oax9z7k9co4ce9"
+    publishers = [{"topic": "a", "type": "xqctxnq8f0t7pu8tw089mshh38rr11l47_voccq_interfaces/msg/State",
+                   "id": long_id}, {"topic": "b", "type": "std_msgs/msg/Empty"}]
+    package = package_dir(make_package({"package_name": "pkg", "ros_distro": ros_distro, "nodes": [
+        {"name": "talker", "language": "python", "publishers": publishers, "timers": [0.5]}]}))
+    user_file = package / ("scripts" if ros_distro == "noetic" else "pkg") / "talker.py"
+    text = user_file.read_text()
+    assert f"        {long_id}_msg = (\n            Xqctxnq8f0t7pu8tw089mshh38rr11l47VoccqInterfacesState())\n" in text
+    assert "        b_msg = Empty()\n" in text  # a line that fits stays as it is
+    assert max(len(line) for line in text.splitlines()) <= 99
+
+
+@pytest.mark.parametrize("ros_distro", ["jazzy", "noetic"])
+def test_a_long_cpp_message_variable_breaks_within_100_columns(make_package, ros_distro):
+    """`<id>_msg.data = static_cast<decltype(<id>_msg.data)>(count_);` and `auto <id>_msg = <Type>();` with a
+    40-character id (found by the drawn packages under ament_cpplint: 104 columns)."""
+    long_id = "y" * 40
+    long_type = "A" + "b" * 49
+    publishers = [{"topic": "a", "type": "std_msgs/msg/UInt16", "id": long_id},
+                  {"topic": "b", "type": f"my_msgs/msg/{long_type}", "id": "z" * 40}]
+    build_type = "catkin" if ros_distro == "noetic" else "ament_cmake"
+    package = package_dir(make_package({"package_name": "pkg", "ros_distro": ros_distro, "build_type": build_type,
+                                        "nodes": [{"name": "talker", "language": "cpp", "publishers": publishers,
+                                                   "timers": [0.5]}]}))
+    text = (package / "src" / "talker.cpp").read_text()
+    assert f"    {long_id}_msg.data =\n      static_cast<decltype({long_id}_msg.data)>(count_);\n" in text
+    assert max(len(line) for line in text.splitlines()) <= 100

@@ -90,7 +90,7 @@ def edges(distro: str, build_type: str, language: str) -> dict:
                 numbers["name"]: extremes}}
 
 
-@given(valid_answers())
+@given(valid_answers(interfaces=True))
 @example(edges("jazzy", "ament_python", "python"))
 @example(edges("jazzy", "ament_cmake", "cpp"))
 @example(edges("noetic", "catkin", "python"))

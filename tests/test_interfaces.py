@@ -198,3 +198,16 @@ def test_same_package_interfaces(make_package):
     manifest = parse_package(str(package / "package.xml"))
     assert [g.name for g in manifest.member_of_groups] == ["rosidl_interface_packages"]
     assert answers_of(destination)["interfaces_location"] == "package"
+
+
+@pytest.mark.parametrize("location", ["separate", "package"])
+def test_ros1_interface_files_are_listed_sorted_as_catkin_lint_asks(make_package, location):
+    """catkin_lint -W2: `list FILES should be sorted` (by code point, upper case first), whatever the answers' order."""
+    destination = make_package({"package_name": "rover", "ros_distro": "noetic", "interfaces_location": location,
+                                "interfaces": {"actions": [{"name": "State", "goal": ["bool ok"]},
+                                                           {"name": "R0", "goal": ["bool ok"]},
+                                                           {"name": "Rb", "goal": ["bool ok"]}]},
+                                "nodes": [{"name": "mover", "action_servers": ["go:State"]}]})
+    home = "rover" if location == "package" else "rover_interfaces"
+    cmake = (destination / home / "CMakeLists.txt").read_text()
+    assert "add_action_files(FILES\n  R0.action\n  Rb.action\n  State.action\n)" in cmake

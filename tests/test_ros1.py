@@ -17,8 +17,10 @@ from pathlib import Path
 import pytest
 from support import existing_packages, interrupts
 from support import ros1 as ros1_support
-from support.generation import VARIANTS, add_node, example, generate
+from support.drawn import Linter, check_drawn, code_linters, thorough, whole
+from support.generation import VARIANTS, add_node, copy_template, example, generate
 from support.processes import NodeProcess, assert_clean_exit, started
+from support.strategies import valid_answers
 from support.tiers import unavailable
 
 pytestmark = pytest.mark.ros1
@@ -255,3 +257,33 @@ def test_launch_file_starts_every_node_with_its_config(catkin_ws):
             launch.wait_for(r"rate: 2\.5", timeout=30)  # the value tuned in config/talker.yaml
             launch.wait_for(r'I heard: "Hello World: \d+"', timeout=30)
             assert_clean_exit(launch, launch.interrupt(timeout=30))
+
+
+# Drawn packages (issue 8): how many the default profile draws; HYPOTHESIS_PROFILE=thorough draws more.
+DRAWN_ROS1 = 16
+DRAWN_ROS1_THOROUGH = 150
+
+
+@pytest.fixture(scope="module")
+def plain_template(tmp_path_factory) -> Path:
+    """The template as a plain folder: Copier renders it in place, without cloning it for each package."""
+    return copy_template(tmp_path_factory.mktemp("plain_template"))
+
+
+def test_drawn_packages_pass_catkin_lint_and_the_style_checks(ros1, ros2, plain_template, tmp_path):
+    """Drawn catkin answer sets (C++ and Python nodes, own interfaces in the package or beside it): catkin_lint
+    -W2 reports 0 problems, and the ROS 2 tier's linters (ament_flake8, ament_pep257, ament_cpplint,
+    ament_uncrustify, borrowed from its Kilted environment) pass their code (tests/support/drawn.py)."""
+    env = ros1.env(ros1_support.free_port(), tmp_path / "ros_home")
+
+    def catkin_lint(paths):
+        return ros1.catkin_lint(paths, env)
+
+    linters = [Linter("catkin_lint -W2", catkin_lint, whole,
+                      lambda returncode, output: returncode == 0 and "found 0 problems" in output),
+               *code_linters(ros2)]
+    count = DRAWN_ROS1_THOROUGH if thorough() else DRAWN_ROS1
+    drawn, failures = check_drawn(plain_template, tmp_path, valid_answers(ros=1, interfaces=True), count, linters)
+    assert drawn == count
+    if failures:
+        pytest.fail(failures, pytrace=False)

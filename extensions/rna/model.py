@@ -381,7 +381,8 @@ class Package:
         return bool(self.definitions) and self.interfaces_home == self.name
 
     def definitions_of(self, kind: str) -> tuple[Definition, ...]:
-        return tuple(d for d in self.definitions if d.kind == kind)
+        """The definitions of one kind, sorted by name as catkin_lint wants the FILES lists that name them."""
+        return tuple(sorted((d for d in self.definitions if d.kind == kind), key=lambda d: d.name))
 
     @property
     def interface_dependencies(self) -> tuple[str, ...]:

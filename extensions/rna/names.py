@@ -61,6 +61,9 @@ RESERVED_TYPE_NAMES = frozenset(
     {name for name in dir(builtins) if name[:1].isupper()} | {"None", "True", "False"} | _C_MACROS
 )
 
+# Names pycodestyle refuses as ambiguous, as they look like 1 and 0 (E741-E743).
+AMBIGUOUS_NAMES = frozenset({"l", "O", "I"})
+
 # Callbacks of rclcpp_lifecycle / rclpy.lifecycle that a generated callback must not shadow.
 LIFECYCLE_CALLBACKS = frozenset(
     {"on_configure", "on_activate", "on_deactivate", "on_cleanup", "on_shutdown", "on_error"}
@@ -130,6 +133,9 @@ def node_name_error(name: object) -> str | None:
         return too_long(name, NODE_NAME_MAX)
     if name.endswith("_base"):
         return f"'{name}' ends in '_base', which is kept for the generated base classes"
+    if snake_to_camel(name) in AMBIGUOUS_NAMES:
+        return (f"'{name}' would name its class {snake_to_camel(name)}, which flake8 refuses as ambiguous "
+                "(E742); give it a longer name")
     return keyword_error(name)
 
 

@@ -173,10 +173,11 @@ class Ros1Environment:
             )
         return result
 
-    def catkin_lint(self, package_dir: Path, env: Mapping[str, str]) -> tuple[int, str]:
-        """Run `catkin_lint -W2` on one package: (exit code, output)."""
+    def catkin_lint(self, paths: Path | Sequence[Path], env: Mapping[str, str]) -> tuple[int, str]:
+        """Run `catkin_lint -W2` on the packages at or under `paths`: (exit code, output)."""
+        paths = [paths] if isinstance(paths, Path) else paths
         result = subprocess.run(
-            ["catkin_lint", "-W2", "--offline", str(package_dir)],
+            ["catkin_lint", "-W2", "--offline", *map(str, paths)],
             env=dict(env), stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
             stderr=subprocess.STDOUT, text=True, timeout=120, check=False,
         )

@@ -2,8 +2,9 @@
 
 Valid answers are drawn from the rules of extensions/rna itself: names built to the
 patterns and lengths of rna.names and kept only when its own checks accept them,
-interface types from the distro's catalogue (rna.catalogue) or from made-up packages
-that rna.interfaces accepts, parameter values of every type within rna.parameters'
+interface types from the distro's catalogue (rna.catalogue), from made-up packages
+that rna.interfaces accepts or from the package's own messages, services and actions
+(the `interfaces` answer, drawn too), parameter values of every type within rna.parameters'
 limits. A few rules look at several answers at once (names used twice in a node, a
 package named like one its nodes use): a drawn set that breaks one of those is drawn
 again, and any other refusal of a "valid" set fails loudly, as a strategy that no
@@ -21,6 +22,7 @@ import math
 import re
 import string
 import sys
+from dataclasses import dataclass
 from pathlib import Path
 
 import yaml
@@ -40,11 +42,14 @@ ALNUM = string.ascii_lowercase + string.digits
 # publisher's line too long; and a long array default does not break.
 FITTING_IDENTIFIER_MAX = 40
 ARRAY_MAX = 3
+# And a type name of 39 to 50 characters (rna.names.TYPE_NAME_MAX) overflows a C++ action
+# client's `const std::shared_ptr<const <Type>::Feedback> feedback) override` line.
+FITTING_TYPE_NAME_MAX = 38
 
 # Rules that look at several answers at once: a set drawn as valid that breaks one is redrawn.
 CROSS_ANSWER_RULES = ("must agree on one type", "(give both the same qos preset)",
                       "both use the name", "is the name of a package its nodes use", "would shadow the Python module",
-                      "characters together: a C++ node's")
+                      "characters together: a C++ node's", "message generation already makes a type")
 
 # Text that has broken, or could break, the files free text lands in: quotes and triple
 # quotes (Python), backslashes (string escapes, comment continuations), Jinja, XML and
@@ -140,6 +145,26 @@ def _needs_id(ros_name: str) -> bool:
     return not derived[:1].isalpha() or bool(names.too_long(derived, FITTING_IDENTIFIER_MAX))
 
 
+@functools.cache
+def type_names() -> st.SearchStrategy[str]:
+    """A CamelCase type name (rna.names.CAMEL_CASE), often as long as fits (FITTING_TYPE_NAME_MAX)."""
+    words = st.lists(st.tuples(st.sampled_from(string.ascii_uppercase),
+                               st.text(string.ascii_lowercase + string.digits, max_size=9)).map("".join),
+                     min_size=1, max_size=12).map("".join)
+    long = st.integers(2, FITTING_TYPE_NAME_MAX).flatmap(
+        lambda size: words.map(lambda name: (name * (size // len(name) + 1))[:size]))
+    return st.one_of(st.from_regex(names.CAMEL_CASE, fullmatch=True), words, long).filter(
+        lambda name: len(name) <= FITTING_TYPE_NAME_MAX and names.is_camel_case(name)
+        and names.type_name_error(name) is None)
+
+
+def _fitting(name: str, package: str, kind: str) -> str | None:
+    """`name`, shortened until its C++ header path fits (rna.names.header_path_error)."""
+    while name and names.header_path_error(package, kind, name):
+        name = name[:-1]
+    return name if name and names.type_name_error(name) is None else None
+
+
 # ----------------------------------------------------------------------------- text
 
 @functools.cache
@@ -165,9 +190,13 @@ def _catalogue_types(distro: str, kind: str) -> list[str]:
 
 
 @st.composite
-def interface_types(draw, kind: str, distro: str) -> str:
-    """A type of the distro's catalogue, or of a made-up package, spelled as users may spell it."""
+def interface_types(draw, kind: str, distro: str, own: OwnInterfaces | None = None) -> str:
+    """A type of the distro's catalogue, of a made-up package or of the package's own interfaces,
+    spelled as users may spell it."""
     ros = distros.generation(distro)
+    if own and own.names[kind] and draw(st.booleans()):
+        name = draw(st.sampled_from(own.names[kind]))
+        return name if draw(st.booleans()) else own.full_name(kind, name)
     if draw(st.integers(0, 3)):
         full = draw(st.sampled_from(_catalogue_types(distro, kind)))
         package, _, name = full.split("/")
@@ -176,15 +205,54 @@ def interface_types(draw, kind: str, distro: str) -> str:
         package = draw(st.one_of(st.sampled_from(("my_msgs", "robot_interfaces")), snake_case(30, min_size=2).filter(
             lambda name: names.package_name_error(name) is None)))
         name = draw(st.one_of(
-            st.from_regex(names.CAMEL_CASE, fullmatch=True).filter(lambda text: len(text) <= names.TYPE_NAME_MAX),
+            type_names(),
             # Names the generated files use themselves, or that another package has too.
             st.sampled_from(("Node", "State", "String", "Time", "Duration", "Parameter", "Empty", "Goal",
                              "Log", "Twist", "Feedback", "Result", "Request", "Response"))))
-        if names.type_name_error(name) or names.header_path_error(package, kind, name):
-            name = "Thing"
+        name = _fitting(name, package, kind) or "Thing"
     # ROS 1 users may keep the ROS 2 spelling; both may leave the kind out.
     short = ros == 1 or draw(st.booleans())
     return f"{package}/{name}" if short and draw(st.booleans()) else f"{package}/{kind}/{name}"
+
+
+@dataclass(frozen=True)
+class OwnInterfaces:
+    """The package's own interfaces drawn for the `interfaces` answer, as its nodes may name them."""
+
+    home: str  # <package>_interfaces, or the package itself
+    ros: int
+    names: dict[str, list[str]]
+
+    def full_name(self, kind: str, name: str) -> str:
+        return f"{self.home}/{name}" if self.ros == 1 else f"{self.home}/{kind}/{name}"
+
+
+_FIELD_LINES = ("float64 x", "int32 count", "string frame_id", "bool ok", "uint8[] data", "std_msgs/Header header",
+                "geometry_msgs/Point position", "int32 MAX_COUNT=5", "float64[] values")
+
+
+@st.composite
+def own_interfaces(draw, ros: int, home: str) -> tuple[dict, OwnInterfaces]:
+    """(the `interfaces` answer: a few messages, services and actions with plain fields, the names drawn)."""
+    drawn = draw(st.lists(st.one_of(type_names(), st.sampled_from(("Target", "Set", "Go", "State", "Node", "Goal"))),
+                          min_size=1, max_size=4))
+    kinds = {"messages": "msg", "services": "srv", "actions": "action"}
+    answer: dict = {}
+    by_kind: dict[str, list[str]] = {"msg": [], "srv": [], "action": []}
+    fields = st.lists(st.sampled_from(_FIELD_LINES), min_size=0, max_size=2, unique_by=lambda line: line.split()[1])
+    stems = set()
+    for name in drawn:
+        key = draw(st.sampled_from(tuple(kinds)))
+        kind = kinds[key]
+        name = _fitting(name, home, kind)
+        if name is None or names.camel_to_snake(name) in stems:
+            continue
+        stems.add(names.camel_to_snake(name))
+        sections = {"msg": ("fields",), "srv": ("request", "response"), "action": ("goal", "result", "feedback")}
+        entry = {"name": name, **{section: draw(fields) for section in sections[kind]}}
+        answer.setdefault(key, []).append(entry)
+        by_kind[kind].append(name)
+    return answer, OwnInterfaces(home, ros, by_kind)
 
 
 # ----------------------------------------------------------------------------- endpoints
@@ -205,9 +273,9 @@ def qos_policies(draw) -> dict:
 
 
 @st.composite
-def topics(draw, distro: str) -> dict | str:
+def topics(draw, distro: str, own: OwnInterfaces | None = None) -> dict | str:
     topic = draw(ros_names("topic"))
-    item = {"topic": topic, "type": draw(interface_types("msg", distro))}
+    item = {"topic": topic, "type": draw(interface_types("msg", distro, own))}
     qos = draw(st.one_of(st.none(), st.integers(1, 10000), st.sampled_from((1, 10000, *qos_rules.PRESETS)),
                          qos_policies()))
     if qos is not None:
@@ -220,9 +288,9 @@ def topics(draw, distro: str) -> dict | str:
 
 
 @st.composite
-def services_or_actions(draw, kind: str, distro: str) -> dict | str:
+def services_or_actions(draw, kind: str, distro: str, own: OwnInterfaces | None = None) -> dict | str:
     name = draw(ros_names("service" if kind == "srv" else "action"))
-    item = {"name": name, "type": draw(interface_types(kind, distro))}
+    item = {"name": name, "type": draw(interface_types(kind, distro, own))}
     if _needs_id(name) or draw(st.integers(0, 4)) == 0:
         item["id"] = draw(identifiers())
     if "id" not in item and draw(st.booleans()):
@@ -332,7 +400,7 @@ ENDPOINT_KEYS = ("publishers", "subscribers", "service_servers", "service_client
 
 
 @st.composite
-def nodes(draw, name: str, distro: str, build_type: str) -> tuple[dict, dict]:
+def nodes(draw, name: str, distro: str, build_type: str, own: OwnInterfaces | None = None) -> tuple[dict, dict]:
     """(a node's answer, {parameter name: (type, default)} of what its config must hold)."""
     ros = distros.generation(distro)
     language = draw(st.sampled_from(distros.languages(build_type)))
@@ -348,13 +416,13 @@ def nodes(draw, name: str, distro: str, build_type: str) -> tuple[dict, dict]:
         node["description"] = draw(one_line_text(150).filter(lambda text: '"""' not in text))
     small = st.integers(0, 2)
     if draw(small):
-        node["publishers"] = draw(st.lists(topics(distro), max_size=2))
+        node["publishers"] = draw(st.lists(topics(distro, own), max_size=2))
     if draw(small):
-        node["subscribers"] = draw(st.lists(topics(distro), max_size=2))
+        node["subscribers"] = draw(st.lists(topics(distro, own), max_size=2))
     for key, kind in (("service_servers", "srv"), ("service_clients", "srv"), ("action_servers", "action"),
                       ("action_clients", "action")):
         if draw(st.integers(0, 3)) == 0:
-            node[key] = draw(st.lists(services_or_actions(kind, distro), max_size=2))
+            node[key] = draw(st.lists(services_or_actions(kind, distro, own), max_size=2))
     if draw(small):
         node["timers"] = draw(st.lists(timers(), max_size=2))
     expected = {}
@@ -368,12 +436,14 @@ def nodes(draw, name: str, distro: str, build_type: str) -> tuple[dict, dict]:
 
 
 @st.composite
-def valid_answers(draw, max_nodes: int = 3) -> dict:
+def valid_answers(draw, max_nodes: int = 3, ros: int | None = None, interfaces: bool = False) -> dict:
     """A complete answer set that rna accepts; `answers["_expected"]` holds each node's parameters.
 
-    Pop `_expected` before handing the answers to Copier.
+    `ros` keeps to one ROS generation; with `interfaces`, the package often defines its own
+    messages, services and actions, and its nodes use them. Pop `_expected` before handing
+    the answers to Copier.
     """
-    distro = draw(st.sampled_from(distros.DISTROS))
+    distro = draw(st.sampled_from([d for d in distros.DISTROS if ros in (None, distros.generation(d))]))
     ros = distros.generation(distro)
     build_type = draw(st.sampled_from(distros.BUILD_TYPES_OF[ros]))
     answers = {
@@ -387,9 +457,16 @@ def valid_answers(draw, max_nodes: int = 3) -> dict:
         "ros_distro": distro,
         "build_type": build_type,
     }
+    own = None
+    if interfaces and draw(st.booleans()):
+        location = "separate"
+        if build_type in distros.BUILDS_INTERFACES and draw(st.booleans()):
+            answers["interfaces_location"] = location = "package"
+        home = answers["package_name"] + ("_interfaces" if location == "separate" else "")
+        answers["interfaces"], own = draw(own_interfaces(ros, home))
     node_list, expected = [], {}
     for name in draw(st.lists(node_names(), min_size=1, max_size=max_nodes, unique=True)):
-        node, parameters_of_node = draw(nodes(name, distro, build_type))
+        node, parameters_of_node = draw(nodes(name, distro, build_type, own))
         node_list.append(node)
         expected[name] = parameters_of_node
     answers["nodes"] = node_list if draw(st.integers(0, 3)) else yaml.safe_dump(node_list, allow_unicode=True)

@@ -6,7 +6,8 @@ Templates write each statement, comment or docstring on one line with markers:
 - `{{ sbr }}` (SPLIT) inside a string literal, where it may be cut in two;
 - `{{ opt }}...{{ endopt }}` (OPTIONAL) around words a comment or docstring can do
   without, such as a long topic name, or `{{ opt }}long{{ alt }}short{{ endopt }}` to give
-  the words that replace them.
+  the words that replace them; in code, the alternative is a spelling that can break
+  (`msg = {{ opt }}T(){{ alt }}({{ br }}T()){{ endopt }}`: parentheses only when needed).
 
 `fit()` leaves a line that fits as it is, markers removed. A line that does not fit loses
 its optional words first; if it still does not fit it breaks at its first marker, then
@@ -154,8 +155,9 @@ def fit_line(line: str, language: str, inside: bool = False) -> list[str]:
             continue
         lines.append(current.rstrip())
         # uncrustify indents what continues an expression (after '<<', '&&'...) once more
-        # than what continues a list (after '(' or ',') or a qualified name (after '::').
-        if language == "cpp" and index > 0 and not lines[-1].endswith((",", "(", "::")):
+        # than what continues a list (after '(' or ','), a qualified name (after '::') or a
+        # string literal cut in pieces.
+        if language == "cpp" and index > 0 and marker != SPLIT and not lines[-1].endswith((",", "(", "::")):
             indent += step
         current = " " * indent + piece.lstrip()
     lines.append(current)
