@@ -306,7 +306,7 @@ class RnaExtension(Extension):
             package_files=package_files,
             python_init_file=python_init_file, user_files=user_files,
             # Line-breaking markers (rna/dialects/lines.py).
-            br=rna.dialects.lines.BREAK, sbr=rna.dialects.lines.SPLIT,
+            br=rna.dialects.lines.BREAK, sbr=rna.dialects.lines.SPLIT, wrap=rna.dialects.lines.WRAP,
             opt=rna.dialects.lines.OPTIONAL, alt=rna.dialects.lines.ALTERNATIVE,
             endopt=rna.dialects.lines.OPTIONAL_END)
         environment.filters.update(

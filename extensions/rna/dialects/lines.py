@@ -6,7 +6,13 @@ Templates write each statement, comment or docstring on one line with markers:
 - `{{ sbr }}` (SPLIT) inside a string literal, where it may be cut in two;
 - `{{ opt }}...{{ endopt }}` (OPTIONAL) around words a comment or docstring can do
   without, such as a long topic name, or `{{ opt }}long{{ alt }}short{{ endopt }}` to give
-  the words that replace them.
+  the words that replace them;
+- `{{ wrap }}` (WRAP) after the `=` of an assignment whose own start is too long for a
+  line with the call that follows (a long member name): Python puts what follows in
+  parentheses on the next lines, C++ just continues it there;
+- NESTED_BREAK and NESTED_SPLIT, which the dialects put in a list literal (an array
+  parameter's default) after its opening bracket, after each comma and in its strings:
+  the places it may break once its line, broken at its own markers, is still too long.
 
 `fit()` leaves a line that fits as it is, markers removed. A line that does not fit loses
 its optional words first; if it still does not fit it breaks at its first marker, then
@@ -29,6 +35,10 @@ SPLIT = "\ue001"
 OPTIONAL = "\ue002"
 OPTIONAL_END = "\ue003"
 ALTERNATIVE = "\ue004"
+WRAP = "\ue007"
+NESTED_BREAK = "\ue005"
+NESTED_SPLIT = "\ue006"
+_NESTED = NESTED_BREAK + NESTED_SPLIT
 
 # Columns of a word without spaces (a URL, a path) between the places a literal may be cut.
 WORD_PIECE = 30
@@ -51,6 +61,24 @@ def columns(line: str, language: str) -> int:
                for char in line)
 
 
+def _wrapped(line: str, language: str, inside: bool) -> list[str]:
+    """A line with WRAP: broken there only if what comes before its first break does not fit."""
+    width, step = LIMITS[language]
+    before, _, after = line.partition(WRAP)
+    plain = before + after
+    if language == "python":
+        # Python breaks a line only inside brackets: without the parentheses, not outside them.
+        plain = before + "".join(char for index, char in enumerate(after)
+                                 if char != BREAK or _depth(after[:index]) > 0)
+    start = re.split(f"[{BREAK}{SPLIT}]", plain)[0]
+    if columns(_plain(start), language) <= width or columns(_plain(plain), language) <= width:
+        return fit_line(plain, language, inside)
+    own = len(line) - len(line.lstrip(" "))
+    if language == "python":
+        return [before.rstrip() + " ("] + fit_line(" " * (own + step) + after.lstrip() + ")", language, True)
+    return [before.rstrip()] + fit_line(" " * (own + step) + after.lstrip(), language, True)
+
+
 def splittable(spelled: Iterable[tuple[str, str]]) -> str:
     """A string literal's inside from (character, its escaped spelling) pairs, with a SPLIT
     after each space and, in a longer word, every WORD_PIECE columns (never inside an escape)."""
@@ -61,7 +89,7 @@ def splittable(spelled: Iterable[tuple[str, str]]) -> str:
         if char == " " or run >= WORD_PIECE:
             out.append(SPLIT)
             run = 0
-    return "".join(out)
+    return "".join(out).removesuffix(SPLIT)
 
 
 def _open_literal(text: str) -> tuple[str, str]:
@@ -102,6 +130,30 @@ def _join(current: str, marker: str, piece: str) -> str:
     return current + piece
 
 
+def _plain(text: str) -> str:
+    """The text without the nested markers (a list literal whole)."""
+    return text.replace(NESTED_BREAK, "").replace(NESTED_SPLIT, "")
+
+
+def _head(text: str) -> str:
+    """What must fit on the line itself: a list literal can break later, after its bracket."""
+    cut = min((text.index(marker) for marker in _NESTED if marker in text), default=len(text))
+    return text[:cut]
+
+
+def _nested(line: str, language: str, inside: bool) -> list[str]:
+    """A line broken at its own markers, then each line still too long at its list literal's markers."""
+    width = LIMITS[language][0]
+    out = []
+    for index, broken in enumerate(line):
+        if columns(_plain(broken), language) > width and any(marker in broken for marker in _NESTED):
+            deeper = broken.replace(NESTED_BREAK, BREAK).replace(NESTED_SPLIT, SPLIT)
+            out += fit_line(deeper, language, inside=inside or index > 0, listing=True)
+        else:
+            out.append(_plain(broken))
+    return out
+
+
 def _depth(text: str, depth: int = 0) -> int:
     """The parenthesis depth after `text` (strings and comments skipped), starting at `depth`."""
     quote, escaped = "", False
@@ -122,20 +174,23 @@ def _depth(text: str, depth: int = 0) -> int:
     return depth
 
 
-def fit_line(line: str, language: str, inside: bool = False) -> list[str]:
-    """One line, or the lines it is broken into; `inside`: the line continues an open bracket."""
+def fit_line(line: str, language: str, inside: bool = False, listing: bool = False) -> list[str]:
+    """One line, or the lines it is broken into; `inside`: the line continues an open bracket;
+    `listing`: its markers are those of a list literal (see _nested)."""
+    if WRAP in line:
+        return _wrapped(line, language, inside)
     width, step = LIMITS[language]
     whole = re.sub(f"{ALTERNATIVE}[^{OPTIONAL_END}]*", "", line).replace(OPTIONAL, "").replace(OPTIONAL_END, "")
     pieces = _pieces(whole)
     joined = pieces[0][1]
     for marker, piece in pieces[1:]:
         joined = _join(joined, marker, piece)
-    if columns(joined, language) <= width:
-        return [joined]
+    if columns(_plain(joined), language) <= width:
+        return [_plain(joined)]
     if OPTIONAL in line:
         return fit_line(_OPTIONAL_WORDS.sub(lambda match: match[1] or "", line), language, inside)
     if len(pieces) == 1:
-        return [joined]
+        return _nested([joined], language, inside)
     # Broken, a line always breaks at its first BREAK (a hanging indent, which flake8
     # and uncrustify both accept after an opening parenthesis), then fills each line.
     # A line that itself continues an open bracket keeps its indent for what follows,
@@ -143,23 +198,43 @@ def fit_line(line: str, language: str, inside: bool = False) -> list[str]:
     own = len(line) - len(line.lstrip(" "))
     head = pieces[0][1].rstrip()
     keep = inside and _depth(head) <= 0 and (language == "python" or head.endswith(","))
-    # uncrustify does not indent a declaration's name that follows a template's closing '>'.
-    keep = keep or (language == "cpp" and head.endswith(">"))
+    # uncrustify does not indent a declaration's name that follows its type on a line of its
+    # own: after a template's closing '>', or a member function's return type.
+    declaration = head.endswith(">") or (head.lstrip().startswith("virtual ") and "(" not in head)
+    keep = keep or (language == "cpp" and declaration)
     indent = own if keep else own + step
-    lines, current = [], head
-    for index, (marker, piece) in enumerate(pieces[1:]):
+    lines, current, cut = [], head, False
+    rest = pieces[1:]
+    for index, (marker, piece) in enumerate(rest):
         longer = _join(current, marker, piece)
-        if (index > 0 or marker == SPLIT) and columns(longer, language) <= width:
+        if listing and marker == BREAK:
+            # An element that does not fit the rest of the line starts the next one whole,
+            # and one cut in pieces has its lines to itself.
+            for following, more in rest[index + 1:]:
+                if following != SPLIT:
+                    break
+                longer = _join(longer, following, more)
+            fits = index > 0 and not cut and columns(_head(longer), language) <= width
+            longer = _join(current, marker, piece)
+        else:
+            fits = (index > 0 or marker == SPLIT) and columns(_head(longer), language) <= width
+        if fits:
             current = longer
             continue
         lines.append(current.rstrip())
+        cut = marker == SPLIT
         # uncrustify indents what continues an expression (after '<<', '&&'...) once more
-        # than what continues a list (after '(' or ',') or a qualified name (after '::').
-        if language == "cpp" and index > 0 and not lines[-1].endswith((",", "(", "::")):
+        # than what continues a list (after '(' or ',') or a qualified name (after '::');
+        # in a list literal, a string cut in two is not indented again.
+        if language == "cpp" and not listing and index > 0 and not _plain(lines[-1]).endswith((",", "(", "::")):
             indent += step
         current = " " * indent + piece.lstrip()
     lines.append(current)
-    return lines
+    # uncrustify puts the brace of a condition that spans lines on a line of its own.
+    if language == "cpp" and re.match(r"\s*(if|while|for) \(", head) and _plain(current).endswith(") {"):
+        lines[-1] = current.rstrip().removesuffix(" {")
+        lines.append(" " * own + "{")
+    return _nested(lines, language, inside)
 
 
 def fit(text: str, language: str) -> str:
