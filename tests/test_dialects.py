@@ -219,3 +219,18 @@ def test_cpp_breaks_a_long_declaration_after_its_type_and_a_long_condition_befor
     assert lines.fit(condition, "cpp").splitlines() == [
         f"      if ({'x' * 64}_", "        ->action_server_is_ready())", "      {"]
     assert lines.fit(condition.replace("x" * 64, "x"), "cpp") == "      if (x_->action_server_is_ready()) {"
+
+
+@pytest.mark.parametrize("text", ["The robot's fastest speed " + "forwards or backwards " * 6,
+                                  "both ' and \" " + "word " * 30 + "it's", "a \\' b \\\" " + "word " * 30])
+def test_each_piece_of_a_cut_python_string_has_the_quotes_flake8_wants_for_it(text):
+    fitted = lines.fit(f"        x = f({B}{python.literal(text, split=True)})", "python").splitlines()
+    assert len(fitted) > 2
+    for piece in fitted[1:]:
+        spelled = piece.strip().removesuffix(")")
+        body = spelled[1:-1]
+        # flake8-quotes: single quotes (Q000) unless the piece holds one, and then double ones
+        # unless it holds those too (Q003).
+        assert spelled[0] == "'" or "'" in body, piece
+        assert spelled[0] == '"' or "\\'" not in body.replace("\\\\", "") or '"' in body, piece
+    assert ast.literal_eval("(" + "\n".join(fitted[1:]).strip().removesuffix(")") + ")") == text

@@ -122,6 +122,27 @@ def _pieces(line: str) -> list[tuple[str, str]]:
     return pieces
 
 
+_PYTHON_STRING = re.compile(r"""([A-Za-z]*)('(?:[^'\\]|\\.)*'|"(?:[^"\\]|\\.)*")""")
+
+
+def _requote(line: str, first: bool, last: bool) -> str:
+    """A Python line whose first or last string literal is a piece of a cut one, each piece in
+    the quotes flake8-quotes wants for it alone: single ones, unless it holds a single quote and
+    no double one (a piece of "it's ..." may hold none; one of 'both \\' and " ...' no double)."""
+    literals = list(_PYTHON_STRING.finditer(line))
+    pieces = {literals[0]} if first and literals else set()
+    pieces |= {literals[-1]} if last and literals else set()
+    for match in sorted(pieces, key=lambda match: -match.start()):  # from the end: offsets stay right
+        prefix, spelled = match[1], match[2]
+        if set(prefix.lower()) & {"f", "r"}:
+            continue  # an f-string's expressions, a raw string's backslashes: kept as they are
+        text = re.sub(r"\\(.)", lambda escape: escape[1] if escape[1] in "'\"" else escape[0], spelled[1:-1])
+        quote = '"' if "'" in text and '"' not in text else "'"
+        inside = re.sub(r"(\\.)|" + quote, lambda char: char[1] or "\\" + quote, text)
+        line = line[:match.start(2)] + quote + inside + quote + line[match.end(2):]
+    return line
+
+
 def _join(current: str, marker: str, piece: str) -> str:
     """A piece appended to the same line: a cut string literal is mended."""
     if marker == SPLIT:
@@ -204,6 +225,7 @@ def fit_line(line: str, language: str, inside: bool = False, listing: bool = Fal
     keep = keep or (language == "cpp" and declaration)
     indent = own if keep else own + step
     lines, current, cut = [], head, False
+    reopened = False  # the current line starts with a piece of a cut string literal
     rest = pieces[1:]
     for index, (marker, piece) in enumerate(rest):
         longer = _join(current, marker, piece)
@@ -222,14 +244,16 @@ def fit_line(line: str, language: str, inside: bool = False, listing: bool = Fal
             current = longer
             continue
         lines.append(current.rstrip())
-        cut = marker == SPLIT
+        if language == "python" and (reopened or marker == SPLIT):
+            lines[-1] = _requote(lines[-1], reopened, marker == SPLIT)
+        cut = reopened = marker == SPLIT
         # uncrustify indents what continues an expression (after '<<', '&&'...) once more
         # than what continues a list (after '(' or ',') or a qualified name (after '::');
         # in a list literal, a string cut in two is not indented again.
         if language == "cpp" and not listing and index > 0 and not _plain(lines[-1]).endswith((",", "(", "::")):
             indent += step
         current = " " * indent + piece.lstrip()
-    lines.append(current)
+    lines.append(_requote(current, True, False) if language == "python" and reopened else current)
     # uncrustify puts the brace of a condition that spans lines on a line of its own.
     if language == "cpp" and re.match(r"\s*(if|while|for) \(", head) and _plain(current).endswith(") {"):
         lines[-1] = current.rstrip().removesuffix(" {")
