@@ -168,7 +168,8 @@ def test_a_long_python_array_breaks_after_its_bracket_and_commas_and_reads_back(
     call = ast.parse(fitted.strip()).body[0].value
     assert ast.literal_eval(call.args[1]) == value
     # Short enough, it stays on one line.
-    assert lines.fit(f"        f({B}'g',{B} {python.literal([1, 2], split=True)})", "python") == "        f('g', [1, 2])"
+    short = f"        f({B}'g',{B} {python.literal([1, 2], split=True)})"
+    assert lines.fit(short, "python") == "        f('g', [1, 2])"
 
 
 @pytest.mark.parametrize("value", LONG_ARRAYS)

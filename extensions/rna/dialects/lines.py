@@ -138,7 +138,7 @@ def _requote(line: str, first: bool, last: bool) -> str:
             continue  # an f-string's expressions, a raw string's backslashes: kept as they are
         text = re.sub(r"\\(.)", lambda escape: escape[1] if escape[1] in "'\"" else escape[0], spelled[1:-1])
         quote = '"' if "'" in text and '"' not in text else "'"
-        inside = re.sub(r"(\\.)|" + quote, lambda char: char[1] or "\\" + quote, text)
+        inside = re.sub(r"(\\.)|" + quote, lambda char, quote=quote: char[1] or "\\" + quote, text)
         line = line[:match.start(2)] + quote + inside + quote + line[match.end(2):]
     return line
 
