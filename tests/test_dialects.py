@@ -235,3 +235,18 @@ def test_each_piece_of_a_cut_python_string_has_the_quotes_flake8_wants_for_it(te
         assert spelled[0] == "'" or "'" in body, piece
         assert spelled[0] == '"' or "\\'" not in body.replace("\\\\", "") or '"' in body, piece
     assert ast.literal_eval("(" + "\n".join(fitted[1:]).strip().removesuffix(")") + ")") == text
+
+
+def test_cpp_keeps_a_declared_name_at_its_types_indent_and_a_qualified_type_as_uncrustify_does():
+    """Long interface types (rna.names.TYPE_NAME_MAX) with long code names: where uncrustify breaks them."""
+    handle = "A" * 50 + "ClientGoalHandle"
+    assert lines.fit_line(f"    const {handle}::WrappedResult &{B} result)", "cpp", inside=True) == [
+        f"    const {handle}::WrappedResult &", "    result)"]
+    override = f"  void on_{'x' * 50}({B}const std::shared_ptr<{handle}>{B} goal_handle) override"
+    assert lines.fit(override, "cpp").split("\n") == [
+        f"  void on_{'x' * 50}(", f"    const std::shared_ptr<{handle}>", "    goal_handle) override"]
+    member = f"  rclcpp_lifecycle::LifecyclePublisher<{'M' * 50}>::{B}SharedPtr{B} {'p' * 50}_;"
+    assert lines.fit(member, "cpp").split("\n") == [
+        f"  rclcpp_lifecycle::LifecyclePublisher<{'M' * 50}>::", f"  SharedPtr {'p' * 50}_;"]
+    argument = f"      actionlib::SimpleActionClient<{'A' * 56}>::{B}SimpleActiveCallback(),"
+    assert lines.fit_line(argument, "cpp", inside=True)[1] == "        SimpleActiveCallback(),"

@@ -173,6 +173,9 @@ def interface_types(draw, kind: str, distro: str) -> str:
             lambda name: names.package_name_error(name) is None)))
         name = draw(st.one_of(
             st.from_regex(names.CAMEL_CASE, fullmatch=True).filter(lambda text: len(text) <= names.TYPE_NAME_MAX),
+            # As long as allowed: with long code names, the longest C++ lines (goal handles).
+            st.text(string.ascii_lowercase + string.digits, min_size=names.TYPE_NAME_MAX - 1,
+                    max_size=names.TYPE_NAME_MAX - 1).map(lambda tail: "L" + tail),
             # Names the generated files use themselves, or that another package has too.
             st.sampled_from(("Node", "State", "String", "Time", "Duration", "Parameter", "Empty", "Goal",
                              "Log", "Twist", "Feedback", "Result", "Request", "Response"))))

@@ -195,6 +195,10 @@ def _depth(text: str, depth: int = 0) -> int:
     return depth
 
 
+# The end of a C++ type before the name it declares: a template's '>' or a reference's '&'.
+_TYPE_END = re.compile(r"(?<![->&])>$|(?<!&) &$")
+
+
 def fit_line(line: str, language: str, inside: bool = False, listing: bool = False) -> list[str]:
     """One line, or the lines it is broken into; `inside`: the line continues an open bracket;
     `listing`: its markers are those of a list literal (see _nested)."""
@@ -221,7 +225,9 @@ def fit_line(line: str, language: str, inside: bool = False, listing: bool = Fal
     keep = inside and _depth(head) <= 0 and (language == "python" or head.endswith(","))
     # uncrustify does not indent a declaration's name that follows its type on a line of its
     # own: after a template's closing '>', or a member function's return type.
-    declaration = head.endswith(">") or (head.lstrip().startswith("virtual ") and "(" not in head)
+    # A qualified type broken after its '::' in a declaration (not in a call's arguments) too.
+    declaration = bool(_TYPE_END.search(head)) or (head.lstrip().startswith("virtual ") and "(" not in head)
+    declaration = declaration or (head.endswith("::") and not inside)
     keep = keep or (language == "cpp" and declaration)
     indent = own if keep else own + step
     lines, current, cut = [], head, False
@@ -249,9 +255,10 @@ def fit_line(line: str, language: str, inside: bool = False, listing: bool = Fal
         cut = reopened = marker == SPLIT
         # uncrustify indents what continues an expression (after '<<', '&&'...) once more
         # than what continues a list (after '(' or ',') or a qualified name (after '::');
-        # in a list literal, a string cut in two is not indented again.
+        # in a list literal, a string cut in two is not indented again, nor a declaration's
+        # name after its type.
         if language == "cpp" and not listing and index > 0 and not _plain(lines[-1]).endswith((",", "(", "::")):
-            indent += step
+            indent += 0 if _TYPE_END.search(_plain(lines[-1])) else step
         current = " " * indent + piece.lstrip()
     lines.append(_requote(current, True, False) if language == "python" and reopened else current)
     # uncrustify puts the brace of a condition that spans lines on a line of its own.
