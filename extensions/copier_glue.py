@@ -306,9 +306,9 @@ class RnaExtension(Extension):
             package_files=package_files,
             python_init_file=python_init_file, user_files=user_files,
             # Line-breaking markers (rna/dialects/lines.py).
-            br=rna.dialects.lines.BREAK, sbr=rna.dialects.lines.SPLIT,
+            br=rna.dialects.lines.BREAK, sbr=rna.dialects.lines.SPLIT, wrap=rna.dialects.lines.WRAP,
             opt=rna.dialects.lines.OPTIONAL, alt=rna.dialects.lines.ALTERNATIVE,
-            endopt=rna.dialects.lines.OPTIONAL_END)
+            endopt=rna.dialects.lines.OPTIONAL_END, yaml_entry=rna.configs.yaml_entry)
         environment.filters.update(
             absolute_source=absolute_source,
             answers_yaml=answers_yaml,
@@ -331,7 +331,6 @@ class RnaExtension(Extension):
             summary=rna.wording.node_summary,
             summary_lines=rna.wording.summary_lines,
             with_article=rna.wording.with_article,
-            yaml_value=rna.configs.yaml_literal,
         )
 
 

@@ -15,6 +15,7 @@ from rna.dialects.lines import BREAK as B
 from rna.dialects.lines import OPTIONAL as O
 from rna.dialects.lines import OPTIONAL_END as E
 from rna.dialects.lines import SPLIT as S
+from rna.dialects.lines import WRAP as W
 
 AWKWARD = ["it's", 'say "hi"', "both ' and \"", "a\nb\rc\td", "C:\\xdata\\N{x}", "bell\x07", "\u2028 and \ue000",
            '"""', "{{ x }} {% y %}", "café ☕", "what??/ and ??=", "", "ends with \\"]
@@ -156,3 +157,104 @@ def test_a_cut_cpp_string_continues_at_the_indent_of_its_first_piece():
     assert len(fitted) >= 3
     assert fitted[0] == "      descriptor.description ="
     assert {len(line) - len(line.lstrip()) for line in fitted[1:]} == {8}
+# An array default at its longest: many elements, strings with escapes, quotes and astral
+# or wide characters, a word longer than a line (issue 8: the thorough profile drew 124 columns).
+LONG_ARRAYS = [
+    list(range(-2**63, -2**63 + 40)),
+    [1.7976931348623157e308, -5e-324, 2.2250738585072014e-308] * 9,
+    [True, False] * 30,
+    ["élan \\ \"quoted\" 'single' \t 🤖🤖 日本語テキスト " * 2] * 4 + ["x" * 90, "🤖" * 70, "\\" * 60, "", "a\nb"],
+]
+
+
+@pytest.mark.parametrize("value", LONG_ARRAYS)
+def test_a_long_python_array_breaks_after_its_bracket_and_commas_and_reads_back(value):
+    statement = f"        self.declare_parameter({B}'{'g' * 50}',{B} {python.literal(value, split=True)})"
+    fitted = lines.fit(statement, "python")
+    assert max(len(line) for line in fitted.splitlines()) <= 99, fitted
+    assert fitted.splitlines()[1] == f"            '{'g' * 50}', ["
+    call = ast.parse(fitted.strip()).body[0].value
+    assert ast.literal_eval(call.args[1]) == value
+    # Short enough, it stays on one line.
+    short = f"        f({B}'g',{B} {python.literal([1, 2], split=True)})"
+    assert lines.fit(short, "python") == "        f('g', [1, 2])"
+
+
+@pytest.mark.parametrize("value", LONG_ARRAYS)
+def test_a_long_cpp_vector_breaks_after_its_brace_and_commas(value):
+    ptype = ParameterType(type(value[0]).__name__.replace("float", "double").replace("str", "string"), True)
+    name = "g" * 50
+    statement = f'    declare_parameter<int>({B}"{name}",{B} {cpp.literal(value, ptype, split=True)});'
+    fitted = lines.fit(statement, "cpp").splitlines()
+    assert all(lines.columns(line, "cpp") <= 100 for line in fitted), fitted
+    assert fitted[1].endswith("{") and fitted[1].startswith("      ")
+    # The elements, at one indent (uncrustify's: 2 more than the line of the brace), end the call.
+    assert {len(line) - len(line.lstrip()) for line in fitted[2:]} == {8}
+    assert fitted[-1].endswith("});")
+    if isinstance(value[0], str):  # each element whole, or cut in pieces on lines of their own
+        assert fitted[-1].strip() == '"", "a\\nb"});' and fitted[-2].strip().startswith('"\\\\')
+
+
+def test_a_long_string_in_an_array_has_its_lines_to_itself():
+    value = ["short", "word " * 40, "next"]
+    fitted = lines.fit(f"        f({B}'g',{B} {python.literal(value, split=True)})", "python").splitlines()
+    assert fitted[2] == "                'short',"
+    assert fitted[-1] == "                'next'])"
+    assert all(line.endswith("'") for line in fitted[3:-2])
+
+
+def test_an_assignment_whose_start_is_too_long_continues_in_parentheses_in_python():
+    member = "self." + "x" * 50 + "_subscription"
+    call = f"self.create_subscription({B}String,{B} '/{'t' * 60}',{B} self.on_x,{B} 10)"
+    fitted = lines.fit(f"        {member} = {W}{call}", "python").splitlines()
+    assert fitted[:2] == [f"        {member} = (", "            self.create_subscription("]
+    assert max(len(line) for line in fitted) <= 99
+    compile("\n".join(line[8:] for line in fitted), "x", "exec")
+    # A start that fits keeps the call on the line, broken after its parenthesis as before.
+    short = lines.fit(f"        self.x_subscription = {W}{call.replace('on_x', 'on_' + 'x' * 60)}", "python")
+    assert short.splitlines()[0] == "        self.x_subscription = self.create_subscription("
+    # Python breaks only inside brackets: a break outside them is taken only in the parentheses.
+    ready = f"        ready = {W}self.{'x' * 50}_action_client{B}.server_is_ready()"
+    assert lines.fit(ready, "python").splitlines() == [
+        "        ready = (", f"            self.{'x' * 50}_action_client", "            .server_is_ready())"]
+    assert lines.fit(ready.replace("x" * 50, "x"), "python") == "        ready = self.x_action_client.server_is_ready()"
+
+
+def test_cpp_breaks_a_long_declaration_after_its_type_and_a_long_condition_before_its_brace():
+    declaration = f"  virtual rclcpp_action::CancelResponse{B} on_{'x' * 50}_cancel("
+    assert lines.fit(declaration, "cpp").splitlines() == [
+        "  virtual rclcpp_action::CancelResponse", f"  on_{'x' * 50}_cancel("]
+    condition = f"      if ({'x' * 64}_{B}->action_server_is_ready()) {{"
+    assert lines.fit(condition, "cpp").splitlines() == [
+        f"      if ({'x' * 64}_", "        ->action_server_is_ready())", "      {"]
+    assert lines.fit(condition.replace("x" * 64, "x"), "cpp") == "      if (x_->action_server_is_ready()) {"
+
+
+@pytest.mark.parametrize("text", ["The robot's fastest speed " + "forwards or backwards " * 6,
+                                  "both ' and \" " + "word " * 30 + "it's", "a \\' b \\\" " + "word " * 30])
+def test_each_piece_of_a_cut_python_string_has_the_quotes_flake8_wants_for_it(text):
+    fitted = lines.fit(f"        x = f({B}{python.literal(text, split=True)})", "python").splitlines()
+    assert len(fitted) > 2
+    for piece in fitted[1:]:
+        spelled = piece.strip().removesuffix(")")
+        body = spelled[1:-1]
+        # flake8-quotes: single quotes (Q000) unless the piece holds one, and then double ones
+        # unless it holds those too (Q003).
+        assert spelled[0] == "'" or "'" in body, piece
+        assert spelled[0] == '"' or "\\'" not in body.replace("\\\\", "") or '"' in body, piece
+    assert ast.literal_eval("(" + "\n".join(fitted[1:]).strip().removesuffix(")") + ")") == text
+
+
+def test_cpp_keeps_a_declared_name_at_its_types_indent_and_a_qualified_type_as_uncrustify_does():
+    """Long interface types (rna.names.TYPE_NAME_MAX) with long code names: where uncrustify breaks them."""
+    handle = "A" * 50 + "ClientGoalHandle"
+    assert lines.fit_line(f"    const {handle}::WrappedResult &{B} result)", "cpp", inside=True) == [
+        f"    const {handle}::WrappedResult &", "    result)"]
+    override = f"  void on_{'x' * 50}({B}const std::shared_ptr<{handle}>{B} goal_handle) override"
+    assert lines.fit(override, "cpp").split("\n") == [
+        f"  void on_{'x' * 50}(", f"    const std::shared_ptr<{handle}>", "    goal_handle) override"]
+    member = f"  rclcpp_lifecycle::LifecyclePublisher<{'M' * 50}>::{B}SharedPtr{B} {'p' * 50}_;"
+    assert lines.fit(member, "cpp").split("\n") == [
+        f"  rclcpp_lifecycle::LifecyclePublisher<{'M' * 50}>::", f"  SharedPtr {'p' * 50}_;"]
+    argument = f"      actionlib::SimpleActionClient<{'A' * 56}>::{B}SimpleActiveCallback(),"
+    assert lines.fit_line(argument, "cpp", inside=True)[1] == "        SimpleActiveCallback(),"

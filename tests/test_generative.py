@@ -161,7 +161,8 @@ def check_python_parameters(tree: ast.AST, expected: dict, path: Path) -> None:
 
 
 def lint_python(files: list[Path]) -> None:
-    """ruff's pyflakes rules, syntax errors, blank lines, invalid escapes, and ament_flake8's 99 columns.
+    """ruff's pyflakes rules, syntax errors, blank lines, invalid escapes, flake8-quotes with ament_flake8's
+    single quotes, and ament_flake8's 99 columns.
 
     flake8 counts characters where ruff counts a wide character as two columns: E501 is
     checked here as flake8 checks it.
@@ -172,7 +173,9 @@ def lint_python(files: list[Path]) -> None:
         for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
             assert len(line) <= 99, f"{path.name}:{number}: {line}"
     result = subprocess.run([sys.executable, "-m", "ruff", "check", "--no-cache", "--isolated", "--preview",
-                             "--select", "F,E3,E9,W291,W293,W391,W6", *map(str, files)], capture_output=True, text=True)
+                             "--select", "F,E3,E9,W291,W293,W391,W6,Q",
+                             "--config", "lint.flake8-quotes.inline-quotes = 'single'", *map(str, files)],
+                            capture_output=True, text=True)
     assert result.returncode == 0, result.stdout + result.stderr
 
 

@@ -198,6 +198,9 @@ def test_parameter_values_are_spelled_per_language():
     assert configs.yaml_literal("true") == "'true'"
     assert configs.yaml_literal(1.0) == "1.0"
     assert configs.yaml_literal([0.5, 1e-06]) == "[0.5, 1.0e-06]"
+    # Plain on its own line, not in a list: a comma, a bracket, a leading '?' (found by the generative tier).
+    strings = ["a, b", "??/$(find x)", "[x]", "{y}", "#c", "a: b", "- z"]
+    assert yaml.safe_load("k: " + configs.yaml_literal(strings))["k"] == strings
 
 
 @pytest.mark.parametrize(

@@ -47,6 +47,22 @@ def test_a_config_merge_reads_values_written_over_several_lines():
         "/**:\n  ros__parameters:\n    gains:\n      - 1.0\n      - 2.5\n")
 
 
+def test_a_long_list_in_a_config_file_breaks_after_its_commas_and_merges_as_one_value():
+    from rna.configs import yaml_entry
+
+    gains = [1.7976931348623157e308, -5e-324] * 12
+    entry = yaml_entry("    ", "gains", gains)
+    assert entry.splitlines()[0] == "    gains: [" and len(entry.splitlines()) > 2
+    assert all(len(line) <= 99 and line.startswith("      ") for line in entry.splitlines()[1:])
+    assert yaml_entry("", "gains", [1.0, 2.0]) == "gains: [1.0, 2.0]"
+    old = f"/**:\n  ros__parameters:\n{entry}\n\n    rate: 5\n"
+    mine = old.replace("rate: 5", "rate: 7")
+    merged = config_merge.merge(old, mine, old.replace(entry, yaml_entry("    ", "gains", gains[:-1])))
+    assert config_merge.parameters(merged.text) == {"gains": gains[:-1], "rate": 7}
+    ros1 = yaml_entry("", "names", ["x" * 30] * 5)
+    assert config_merge.parameters(ros1) == {"names": ["x" * 30] * 5} and "\n  x" in ros1
+
+
 def test_the_answers_file_records_each_nodes_language():
     answers = {"build_type": "ament_cmake", "nodes": ["talker", {"name": "listener", "language": "python"},
                                                       {"name": "relay"}]}

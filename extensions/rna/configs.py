@@ -26,5 +26,35 @@ def yaml_literal(value: object) -> str:
     if isinstance(value, float):
         return yaml_float(value)
     if isinstance(value, list):
-        return "[" + ", ".join(yaml_literal(item) for item in value) + "]"
+        return "[" + ", ".join(_flow_item(item) for item in value) + "]"
     return yaml.safe_dump(value, default_flow_style=True, width=10**6).strip().removesuffix("...").strip()
+
+
+def _flow_item(value: object) -> str:
+    """An element of a flow list: a string plain on its own may not be in a list (`a, b`, `??/`)."""
+    if not isinstance(value, str):
+        return yaml_literal(value)
+    return yaml.safe_dump([value], default_flow_style=True, width=10**6).strip()[1:-1]
+
+
+def yaml_entry(indent: str, key: str, value: object, width: int = 99) -> str:
+    """`key: value` at `indent`, as the config file writes it (the template and the update's merge).
+
+    A list too long for `width` columns breaks after its bracket and its commas, its elements
+    on lines 2 columns deeper than the key (YAML reads a flow list across lines); an element
+    longer than a line stays whole.
+    """
+    line = f"{indent}{key}: {yaml_literal(value)}"
+    if not isinstance(value, list) or len(line) <= width:
+        return line
+    items = [_flow_item(item) for item in value]
+    pad = indent + "  "
+    lines, current = [f"{indent}{key}: ["], pad
+    for index, item in enumerate(items):
+        piece = item + ("," if index < len(items) - 1 else "]")
+        if current != pad and len(current) + 1 + len(piece) > width:
+            lines.append(current)
+            current = pad
+        current += piece if current == pad else " " + piece
+    lines.append(current)
+    return "\n".join(lines)

@@ -36,15 +36,8 @@ from rna.parameters import INT_RANGE, INT_RANGES, TYPE_ALIASES, infer_type
 
 ALNUM = string.ascii_lowercase + string.digits
 
-# Known defects, left out of what is drawn until fixed (each overflows the linters'
-# columns): an endpoint code name of 41 to 50 characters (rna.names.IDENTIFIER_MAX)
-# makes `self.<id>_subscription = self.create_subscription(` and the lifecycle
-# publisher's line too long; and a long array default does not break.
-FITTING_IDENTIFIER_MAX = 40
-ARRAY_MAX = 3
-# And a type name of 39 to 50 characters (rna.names.TYPE_NAME_MAX) overflows a C++ action
-# client's `const std::shared_ptr<const <Type>::Feedback> feedback) override` line.
-FITTING_TYPE_NAME_MAX = 38
+# Arrays long enough to break over several lines however short their elements (40 bools).
+ARRAY_MAX = 40
 
 # Rules that look at several answers at once: a set drawn as valid that breaks one is redrawn.
 CROSS_ANSWER_RULES = ("must agree on one type", "(give both the same qos preset)",
@@ -114,7 +107,7 @@ def parameter_names(ros: int) -> st.SearchStrategy[str]:
 
 @functools.cache
 def identifiers(what: str = "id") -> st.SearchStrategy[str]:
-    return snake_case(FITTING_IDENTIFIER_MAX).filter(lambda name: names.identifier_error(name, what) is None)
+    return snake_case(names.IDENTIFIER_MAX).filter(lambda name: names.identifier_error(name, what) is None)
 
 
 # A part between '/' of a ROS name (rna.names.NAME_TOKEN), CamelCase and leading '_' included.
@@ -140,21 +133,21 @@ def ros_names(draw, what: str = "topic") -> str:
 
 
 def _needs_id(ros_name: str) -> bool:
-    """The code name derived from a ROS name is refused (rna.answers.nodes._parse_id), or too long to fit."""
+    """The code name derived from a ROS name is refused (rna.answers.nodes._parse_id), or too long."""
     derived = names.identifier_from_name(ros_name)
-    return not derived[:1].isalpha() or bool(names.too_long(derived, FITTING_IDENTIFIER_MAX))
+    return not derived[:1].isalpha() or bool(names.too_long(derived, names.IDENTIFIER_MAX))
 
 
 @functools.cache
 def type_names() -> st.SearchStrategy[str]:
-    """A CamelCase type name (rna.names.CAMEL_CASE), often as long as fits (FITTING_TYPE_NAME_MAX)."""
+    """A CamelCase type name (rna.names.CAMEL_CASE), often as long as the rules allow (TYPE_NAME_MAX)."""
     words = st.lists(st.tuples(st.sampled_from(string.ascii_uppercase),
                                st.text(string.ascii_lowercase + string.digits, max_size=9)).map("".join),
                      min_size=1, max_size=12).map("".join)
-    long = st.integers(2, FITTING_TYPE_NAME_MAX).flatmap(
+    long = st.integers(2, names.TYPE_NAME_MAX).flatmap(
         lambda size: words.map(lambda name: (name * (size // len(name) + 1))[:size]))
     return st.one_of(st.from_regex(names.CAMEL_CASE, fullmatch=True), words, long).filter(
-        lambda name: len(name) <= FITTING_TYPE_NAME_MAX and names.is_camel_case(name)
+        lambda name: len(name) <= names.TYPE_NAME_MAX and names.is_camel_case(name)
         and names.type_name_error(name) is None)
 
 
@@ -205,7 +198,10 @@ def interface_types(draw, kind: str, distro: str, own: OwnInterfaces | None = No
         package = draw(st.one_of(st.sampled_from(("my_msgs", "robot_interfaces")), snake_case(30, min_size=2).filter(
             lambda name: names.package_name_error(name) is None)))
         name = draw(st.one_of(
-            type_names(),
+            st.from_regex(names.CAMEL_CASE, fullmatch=True).filter(lambda text: len(text) <= names.TYPE_NAME_MAX),
+            # As long as allowed: with long code names, the longest C++ lines (goal handles).
+            st.text(string.ascii_lowercase + string.digits, min_size=names.TYPE_NAME_MAX - 1,
+                    max_size=names.TYPE_NAME_MAX - 1).map(lambda tail: "L" + tail),
             # Names the generated files use themselves, or that another package has too.
             st.sampled_from(("Node", "State", "String", "Time", "Duration", "Parameter", "Empty", "Goal",
                              "Log", "Twist", "Feedback", "Result", "Request", "Response"))))
@@ -325,7 +321,7 @@ def _ints(ros: int) -> st.SearchStrategy[int]:
 
 
 DOUBLES = st.one_of(st.floats(allow_nan=False, allow_infinity=False), st.sampled_from(EXTREME_DOUBLES))
-STRINGS = st.one_of(st.text(max_size=40), one_line_text(60), st.sampled_from((
+STRINGS = st.one_of(st.text(max_size=40), one_line_text(150), st.sampled_from((
     "", "true", "1", "1e+308", "null", "~", "[1, 2]", "{}", "- x", "a: b", "a\x85b", "a\u2028b", "a\nb\tc")))
 _TYPE_SPELLINGS = {scalar: [scalar] + [alias for alias, name in TYPE_ALIASES.items() if name == scalar]
                    for scalar in ("bool", "int", "double", "string")}
@@ -338,10 +334,9 @@ def parameters(draw, ros: int) -> tuple[dict | str, str, object]:
     is_array = draw(st.booleans())
     values = {"bool": st.booleans(), "int": _ints(ros), "double": DOUBLES, "string": STRINGS}[scalar]
     if is_array:
-        # Short elements (escapes lengthen a string fourfold): a long array literal does not break yet.
-        short = {"double": st.sampled_from(EXTREME_DOUBLES),
-                 "string": st.text(string.ascii_letters + string.digits + " _-'\"\\", max_size=8)}.get(scalar, values)
-        default = draw(st.lists(short, min_size=1, max_size=ARRAY_MAX))
+        # Few elements or many, at their longest: the widest doubles, strings of any text.
+        elements = {"double": st.one_of(DOUBLES, st.sampled_from(EXTREME_DOUBLES))}.get(scalar, values)
+        default = draw(st.lists(elements, min_size=1, max_size=draw(st.sampled_from((3, ARRAY_MAX)))))
     else:
         default = draw(values)
     spelled_type = draw(st.sampled_from(_TYPE_SPELLINGS[scalar]))

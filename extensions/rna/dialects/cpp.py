@@ -7,7 +7,7 @@ from collections.abc import Iterable
 from functools import cached_property
 
 from .. import features, names
-from .lines import splittable
+from .lines import NESTED_BREAK, NESTED_SPLIT, SPLIT, splittable
 from ..parameters import INT_RANGE, ParameterType
 
 _SCALARS = {"bool": "bool", "int": "int64_t", "double": "double", "string": "std::string"}
@@ -55,18 +55,24 @@ def number(value: int | float) -> str:
     return "(-9223372036854775807 - 1)" if value == INT_RANGE[0] else str(value)
 
 
-def literal(value: object, ptype: ParameterType, scalars: dict[str, str] = _SCALARS) -> str:
-    """A C++ expression of the parameter type's C++ type."""
+def literal(value: object, ptype: ParameterType, scalars: dict[str, str] = _SCALARS, split: bool = False) -> str:
+    """A C++ expression of the parameter type's C++ type.
+
+    `split`: a string may be cut (rna.dialects.lines) when its line is too long, a vector
+    broken after its brace and its commas, and its strings cut.
+    """
     if ptype.is_array:
-        items = ", ".join(literal(item, ParameterType(ptype.scalar), scalars) for item in value)
-        return f"std::vector<{scalars[ptype.scalar]}>{{{items}}}"
+        items = [literal(item, ParameterType(ptype.scalar), scalars, split) for item in value]
+        if split:
+            items = [NESTED_BREAK + item.replace(SPLIT, NESTED_SPLIT) for item in items]
+        return f"std::vector<{scalars[ptype.scalar]}>{{{', '.join(items)}}}"
     if ptype.scalar == "bool":
         return "true" if value else "false"
     if ptype.scalar == "int":
         return number(int(value))
     if ptype.scalar == "double":
         return number(float(value))
-    return string(value)
+    return string(value, split)
 
 
 _CPP_ESCAPES = {"\\": "\\\\", '"': '\\"', "\n": "\\n", "\r": "\\r", "\t": "\\t"}
@@ -135,7 +141,8 @@ class CppDialect:
         return f"std::vector<{scalar}>" if parameter.type.is_array else scalar
 
     def parameter_default(self, parameter) -> str:
-        return literal(parameter.default, parameter.type, self.SCALARS)
+        """The default as a literal that breaks when its line is too long."""
+        return literal(parameter.default, parameter.type, self.SCALARS, split=True)
 
     def _needs(self, which: str) -> list[str]:
         return [item for need in features.needs(self.node) for item in getattr(need, which)]

@@ -6,8 +6,13 @@ Templates write each statement, comment or docstring on one line with markers:
 - `{{ sbr }}` (SPLIT) inside a string literal, where it may be cut in two;
 - `{{ opt }}...{{ endopt }}` (OPTIONAL) around words a comment or docstring can do
   without, such as a long topic name, or `{{ opt }}long{{ alt }}short{{ endopt }}` to give
-  the words that replace them; in code, the alternative is a spelling that can break
-  (`msg = {{ opt }}T(){{ alt }}({{ br }}T()){{ endopt }}`: parentheses only when needed).
+  the words that replace them;
+- `{{ wrap }}` (WRAP) after the `=` of an assignment whose own start is too long for a
+  line with the call that follows (a long member name): Python puts what follows in
+  parentheses on the next lines, C++ just continues it there;
+- NESTED_BREAK and NESTED_SPLIT, which the dialects put in a list literal (an array
+  parameter's default) after its opening bracket, after each comma and in its strings:
+  the places it may break once its line, broken at its own markers, is still too long.
 
 `fit()` leaves a line that fits as it is, markers removed. A line that does not fit loses
 its optional words first; if it still does not fit it breaks at its first marker, then
@@ -30,6 +35,10 @@ SPLIT = "\ue001"
 OPTIONAL = "\ue002"
 OPTIONAL_END = "\ue003"
 ALTERNATIVE = "\ue004"
+WRAP = "\ue007"
+NESTED_BREAK = "\ue005"
+NESTED_SPLIT = "\ue006"
+_NESTED = NESTED_BREAK + NESTED_SPLIT
 
 # Columns of a word without spaces (a URL, a path) between the places a literal may be cut.
 WORD_PIECE = 30
@@ -52,6 +61,24 @@ def columns(line: str, language: str) -> int:
                for char in line)
 
 
+def _wrapped(line: str, language: str, inside: bool) -> list[str]:
+    """A line with WRAP: broken there only if what comes before its first break does not fit."""
+    width, step = LIMITS[language]
+    before, _, after = line.partition(WRAP)
+    plain = before + after
+    if language == "python":
+        # Python breaks a line only inside brackets: without the parentheses, not outside them.
+        plain = before + "".join(char for index, char in enumerate(after)
+                                 if char != BREAK or _depth(after[:index]) > 0)
+    start = re.split(f"[{BREAK}{SPLIT}]", plain)[0]
+    if columns(_plain(start), language) <= width or columns(_plain(plain), language) <= width:
+        return fit_line(plain, language, inside)
+    own = len(line) - len(line.lstrip(" "))
+    if language == "python":
+        return [before.rstrip() + " ("] + fit_line(" " * (own + step) + after.lstrip() + ")", language, True)
+    return [before.rstrip()] + fit_line(" " * (own + step) + after.lstrip(), language, True)
+
+
 def splittable(spelled: Iterable[tuple[str, str]]) -> str:
     """A string literal's inside from (character, its escaped spelling) pairs, with a SPLIT
     after each space and, in a longer word, every WORD_PIECE columns (never inside an escape)."""
@@ -62,7 +89,7 @@ def splittable(spelled: Iterable[tuple[str, str]]) -> str:
         if char == " " or run >= WORD_PIECE:
             out.append(SPLIT)
             run = 0
-    return "".join(out)
+    return "".join(out).removesuffix(SPLIT)
 
 
 def _open_literal(text: str) -> tuple[str, str]:
@@ -95,12 +122,57 @@ def _pieces(line: str) -> list[tuple[str, str]]:
     return pieces
 
 
+_PYTHON_STRING = re.compile(r"""([A-Za-z]*)('(?:[^'\\]|\\.)*'|"(?:[^"\\]|\\.)*")""")
+
+
+def _requote(line: str, first: bool, last: bool) -> str:
+    """A Python line whose first or last string literal is a piece of a cut one, each piece in
+    the quotes flake8-quotes wants for it alone: single ones, unless it holds a single quote and
+    no double one (a piece of "it's ..." may hold none; one of 'both \\' and " ...' no double)."""
+    literals = list(_PYTHON_STRING.finditer(line))
+    pieces = {literals[0]} if first and literals else set()
+    pieces |= {literals[-1]} if last and literals else set()
+    for match in sorted(pieces, key=lambda match: -match.start()):  # from the end: offsets stay right
+        prefix, spelled = match[1], match[2]
+        if set(prefix.lower()) & {"f", "r"}:
+            continue  # an f-string's expressions, a raw string's backslashes: kept as they are
+        text = re.sub(r"\\(.)", lambda escape: escape[1] if escape[1] in "'\"" else escape[0], spelled[1:-1])
+        quote = '"' if "'" in text and '"' not in text else "'"
+        inside = re.sub(r"(\\.)|" + quote, lambda char, quote=quote: char[1] or "\\" + quote, text)
+        line = line[:match.start(2)] + quote + inside + quote + line[match.end(2):]
+    return line
+
+
 def _join(current: str, marker: str, piece: str) -> str:
     """A piece appended to the same line: a cut string literal is mended."""
     if marker == SPLIT:
         reopened = len(piece) - len(piece.lstrip("bBfFrRuU")) + 1
         return current[:-1] + piece[reopened:]
     return current + piece
+
+
+def _plain(text: str) -> str:
+    """The text without the nested markers (a list literal whole)."""
+    return text.replace(NESTED_BREAK, "").replace(NESTED_SPLIT, "")
+
+
+def _head(text: str) -> str:
+    """What must fit on the line itself: a list literal can break later, after its bracket."""
+    cut = min((text.index(marker) for marker in _NESTED if marker in text), default=len(text))
+    return text[:cut]
+
+
+def _nested(line: str, language: str, inside: bool) -> list[str]:
+    """A line broken at its own markers, then each line still too long at its list literal's markers."""
+    width = LIMITS[language][0]
+    out = []
+    for index, broken in enumerate(line):
+        if columns(_plain(broken), language) > width and any(marker in broken for marker in _NESTED):
+            deeper = broken.replace(NESTED_BREAK, BREAK).replace(NESTED_SPLIT, SPLIT)
+            out += fit_line(deeper, language, inside=inside or index > 0, listing=True)
+        else:
+            out.append(_plain(broken))
+    return out
 
 
 def _depth(text: str, depth: int = 0) -> int:
@@ -123,20 +195,27 @@ def _depth(text: str, depth: int = 0) -> int:
     return depth
 
 
-def fit_line(line: str, language: str, inside: bool = False) -> list[str]:
-    """One line, or the lines it is broken into; `inside`: the line continues an open bracket."""
+# The end of a C++ type before the name it declares: a template's '>' or a reference's '&'.
+_TYPE_END = re.compile(r"(?<![->&])>$|(?<!&) &$")
+
+
+def fit_line(line: str, language: str, inside: bool = False, listing: bool = False) -> list[str]:
+    """One line, or the lines it is broken into; `inside`: the line continues an open bracket;
+    `listing`: its markers are those of a list literal (see _nested)."""
+    if WRAP in line:
+        return _wrapped(line, language, inside)
     width, step = LIMITS[language]
     whole = re.sub(f"{ALTERNATIVE}[^{OPTIONAL_END}]*", "", line).replace(OPTIONAL, "").replace(OPTIONAL_END, "")
     pieces = _pieces(whole)
     joined = pieces[0][1]
     for marker, piece in pieces[1:]:
         joined = _join(joined, marker, piece)
-    if columns(joined, language) <= width:
-        return [joined]
+    if columns(_plain(joined), language) <= width:
+        return [_plain(joined)]
     if OPTIONAL in line:
         return fit_line(_OPTIONAL_WORDS.sub(lambda match: match[1] or "", line), language, inside)
     if len(pieces) == 1:
-        return [joined]
+        return _nested([joined], language, inside)
     # Broken, a line always breaks at its first BREAK (a hanging indent, which flake8
     # and uncrustify both accept after an opening parenthesis), then fills each line.
     # A line that itself continues an open bracket keeps its indent for what follows,
@@ -144,24 +223,49 @@ def fit_line(line: str, language: str, inside: bool = False) -> list[str]:
     own = len(line) - len(line.lstrip(" "))
     head = pieces[0][1].rstrip()
     keep = inside and _depth(head) <= 0 and (language == "python" or head.endswith(","))
-    # uncrustify does not indent a declaration's name that follows a template's closing '>'.
-    keep = keep or (language == "cpp" and head.endswith(">"))
+    # uncrustify does not indent a declaration's name that follows its type on a line of its
+    # own: after a template's closing '>', or a member function's return type.
+    # A qualified type broken after its '::' in a declaration (not in a call's arguments) too.
+    declaration = bool(_TYPE_END.search(head)) or (head.lstrip().startswith("virtual ") and "(" not in head)
+    declaration = declaration or (head.endswith("::") and not inside)
+    keep = keep or (language == "cpp" and declaration)
     indent = own if keep else own + step
-    lines, current = [], head
-    for index, (marker, piece) in enumerate(pieces[1:]):
+    lines, current, cut = [], head, False
+    reopened = False  # the current line starts with a piece of a cut string literal
+    rest = pieces[1:]
+    for index, (marker, piece) in enumerate(rest):
         longer = _join(current, marker, piece)
-        if (index > 0 or marker == SPLIT) and columns(longer, language) <= width:
+        if listing and marker == BREAK:
+            # An element that does not fit the rest of the line starts the next one whole,
+            # and one cut in pieces has its lines to itself.
+            for following, more in rest[index + 1:]:
+                if following != SPLIT:
+                    break
+                longer = _join(longer, following, more)
+            fits = index > 0 and not cut and columns(_head(longer), language) <= width
+            longer = _join(current, marker, piece)
+        else:
+            fits = (index > 0 or marker == SPLIT) and columns(_head(longer), language) <= width
+        if fits:
             current = longer
             continue
         lines.append(current.rstrip())
+        if language == "python" and (reopened or marker == SPLIT):
+            lines[-1] = _requote(lines[-1], reopened, marker == SPLIT)
+        cut = reopened = marker == SPLIT
         # uncrustify indents what continues an expression (after '<<', '&&'...) once more
-        # than what continues a list (after '(' or ','), a qualified name (after '::') or a
-        # string literal cut in pieces.
-        if language == "cpp" and index > 0 and marker != SPLIT and not lines[-1].endswith((",", "(", "::")):
-            indent += step
+        # than what continues a list (after '(' or ',') or a qualified name (after '::');
+        # in a list literal, a string cut in two is not indented again, nor a declaration's
+        # name after its type, nor a string literal cut after an assignment's `=`.
+        if language == "cpp" and not listing and index > 0 and marker != SPLIT and not _plain(lines[-1]).endswith((",", "(", "::")):
+            indent += 0 if _TYPE_END.search(_plain(lines[-1])) else step
         current = " " * indent + piece.lstrip()
-    lines.append(current)
-    return lines
+    lines.append(_requote(current, True, False) if language == "python" and reopened else current)
+    # uncrustify puts the brace of a condition that spans lines on a line of its own.
+    if language == "cpp" and re.match(r"\s*(if|while|for) \(", head) and _plain(current).endswith(") {"):
+        lines[-1] = current.rstrip().removesuffix(" {")
+        lines.append(" " * own + "{")
+    return _nested(lines, language, inside)
 
 
 def fit(text: str, language: str) -> str:

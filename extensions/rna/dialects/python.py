@@ -15,7 +15,7 @@ from collections.abc import Iterable
 from functools import cached_property
 
 from .. import features, names
-from .lines import splittable
+from .lines import NESTED_BREAK, NESTED_SPLIT, SPLIT, splittable
 
 # Names the generated Python files import or define besides interface types.
 RESERVED = frozenset({
@@ -52,7 +52,8 @@ def _escape(text: str, quote: str) -> str:
 def literal(value: object, split: bool = False) -> str:
     """A Python literal in the quote style ROS's flake8 settings want (single quotes).
 
-    `split`: a string may be cut at its spaces (rna.dialects.lines) when its line is too long.
+    `split`: a string may be cut at its spaces (rna.dialects.lines) when its line is too long,
+    a list broken after its bracket and its commas, and its strings cut.
     """
     if isinstance(value, bool):
         return "True" if value else "False"
@@ -68,6 +69,9 @@ def literal(value: object, split: bool = False) -> str:
             return quote + splittable((char, _escape(char, quote)) for char in value) + quote
         return quote + _escape(value, quote) + quote
     if isinstance(value, list):
+        if split:
+            items = (literal(item, split=True).replace(SPLIT, NESTED_SPLIT) for item in value)
+            return "[" + NESTED_BREAK + f",{NESTED_BREAK} ".join(items) + "]"
         return "[" + ", ".join(literal(item) for item in value) + "]"
     raise TypeError(f"no Python literal for {value!r}")
 
@@ -135,6 +139,12 @@ class PythonDialect:
         self.node = node
 
     literal = staticmethod(literal)
+
+    @staticmethod
+    def parameter_default(parameter) -> str:
+        """The default as a literal that breaks when its line is too long."""
+        return literal(parameter.default, split=True)
+
     text_literal = staticmethod(text_literal)
     docstring_prefix = staticmethod(docstring_prefix)
 

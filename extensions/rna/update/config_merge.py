@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 
 import yaml
 
-from ..configs import yaml_literal
+from ..configs import yaml_entry, yaml_literal
 from ..model import Package
 from .project import Project, Render
 from .summary import Report
@@ -110,7 +110,7 @@ def _with_value(line: str, name: str, value: object) -> str:
     match = KEY.match(line)
     rest = match["rest"]
     comment = rest[_comment_start(rest):]
-    return f"{match['indent']}{match['key']}: {yaml_literal(value)}" + (f"  {comment}" if comment else "")
+    return yaml_entry(match["indent"], match["key"], value) + (f"  {comment}" if comment else "")
 
 
 @dataclass
@@ -181,7 +181,7 @@ def merge(old_text: str, mine_text: str, new_text: str, descriptions: tuple[dict
         if name in places.entries or name not in wanted:
             continue
         block = ([f"{indent}# {new_descriptions[name]}"] if new_descriptions.get(name) else [])
-        block.append(f"{indent}{name}: {yaml_literal(wanted[name])}")
+        block.append(yaml_entry(indent, name, wanted[name]))
         previous = next((places.entries[other] for other in reversed(order[:position])
                          if other in places.entries), None)
         if previous is not None:
