@@ -257,7 +257,8 @@ def fit_line(line: str, language: str, inside: bool = False, listing: bool = Fal
         # than what continues a list (after '(' or ',') or a qualified name (after '::');
         # in a list literal, a string cut in two is not indented again, nor a declaration's
         # name after its type, nor a string literal cut after an assignment's `=`.
-        if language == "cpp" and not listing and index > 0 and marker != SPLIT and not _plain(lines[-1]).endswith((",", "(", "::")):
+        continues_list = _plain(lines[-1]).endswith((",", "(", "::"))
+        if language == "cpp" and not listing and index > 0 and marker != SPLIT and not continues_list:
             indent += 0 if _TYPE_END.search(_plain(lines[-1])) else step
         current = " " * indent + piece.lstrip()
     lines.append(_requote(current, True, False) if language == "python" and reopened else current)
