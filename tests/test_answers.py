@@ -120,6 +120,7 @@ BROKEN = [
     (answers(maintainer="Ada\tLovelace"), "maintainer", "printable"),
     (answers(maintainer_email="ada@localhost"), "maintainer_email", "catkin_pkg"),
     (answers(copyright_holder="Lab\\"), "copyright_holder", "C++ comment"),
+    (answers(copyright_holder="Lab ??/"), "copyright_holder", "C++ comment"),
     (answers(nodes=[{"name": "n" * 40}]), "nodes", "at most 39"),
     (answers(package_name="p" * 39, build_type="ament_cmake", nodes=[{"name": "n" * 35, "language": "cpp"}]),
      "nodes", "74 characters together: a C++ node's have at most 73"),

@@ -447,7 +447,7 @@ def valid_answers(draw, max_nodes: int = 3, ros: int | None = None, interfaces: 
         "maintainer": draw(one_line_text(60)),
         "maintainer_email": draw(emails()),
         "license": draw(st.sampled_from(sorted(LICENSES))),
-        "copyright_holder": draw(one_line_text(60).filter(lambda text: not text.strip().endswith("\\"))),
+        "copyright_holder": draw(one_line_text(60).filter(lambda text: not text.strip().endswith(("\\", "??/")))),
         "copyright_year": draw(st.integers(1970, 9999)),
         "ros_distro": distro,
         "build_type": build_type,

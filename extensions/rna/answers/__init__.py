@@ -186,8 +186,8 @@ class Answers:
             return _one_line(self.raw.get(question))
         if question == "copyright_holder":
             holder = _one_line(self.raw.get(question))
-            if holder.endswith("\\"):
-                raise ValueError("a backslash at the end would continue the C++ comment line it ends")
+            if holder.endswith(("\\", "??/")):  # ??/ is the trigraph of a backslash; GCC warns of it
+                raise ValueError("a backslash (or ??/) at the end would continue the C++ comment line it ends")
             return holder
         if question in ("interfaces", "nodes"):
             return getattr(self, "definitions" if question == "interfaces" else question)
