@@ -105,7 +105,15 @@ def _from_import(module: str, names: list[str], width: int = 99) -> str:
     line = f"from {module} import {', '.join(names)}"
     if len(line) <= width:
         return line
-    return f"from {module} import (\n" + "".join(f"    {name},\n" for name in names) + ")"
+    return f"from {module} import (\n" + "".join(_import_name(name, width) for name in names) + ")"
+
+
+def _import_name(name: str, width: int) -> str:
+    """One name of a parenthesized import; an alias too long for its line goes on the next."""
+    if len(f"    {name},") <= width or " as " not in name:
+        return f"    {name},\n"
+    original, alias = name.split(" as ")
+    return f"    {original} as\n    {alias},\n"
 
 
 def import_block(imports: Iterable[str]) -> str:
