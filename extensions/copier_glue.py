@@ -299,6 +299,7 @@ class RnaExtension(Extension):
         environment.globals.update(
             answer_error=answer_error, answers_file_name=answers_file_name, base_files=base_files,
             builds_interfaces=rna.distros.BUILDS_INTERFACES, languages=rna.distros.languages,
+            ubuntu=rna.distros.UBUNTU,
             default_description=default_description, default_nodes=default_nodes,
             nodes_dialog=nodes_dialog, nodes_dialog_pending=nodes_dialog_pending,
             existing_package=existing_package, found_interfaces=found_interfaces, git_config=git_config,

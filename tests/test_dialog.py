@@ -238,6 +238,7 @@ def test_a_newcomer_makes_three_nodes_without_yaml(template_dir, tmp_path):
         terminal.choose("What next?", "Done with")
         terminal.choose("what next?", "Done")
         terminal.answer("One sentence", "")
+        terminal.answer("GitHub Actions workflow", "")
         # The dialog's rows; the description's default that follows is as long as the nodes make it.
         cut = [row for row in terminal.wide_rows if "The driver node publishes" not in row]
         terminal.child.expect(pexpect.EOF, timeout=60)
@@ -319,6 +320,7 @@ def test_an_update_can_still_edit_the_nodes_as_yaml(template_dir, tmp_path):
         terminal.child.send("n")  # a yes/no prompt takes one key
         terminal.answer("The package's nodes, as a YAML list", "\x1b")
         terminal.answer("One sentence", "")
+        terminal.answer("GitHub Actions workflow", "")
         terminal.child.expect(pexpect.EOF, timeout=60)
     finally:
         terminal.close()

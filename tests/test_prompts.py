@@ -150,9 +150,10 @@ BEFORE_THE_NODES = [("package_name", ""), ("maintainer", ""), ("maintainer_email
 ONE_NODE = [("node_setup", DOWN), ("node_language", ""), ("node_name", ""), ("node_publishers", ""),
             ("node_subscribers", ""), ("node_service_servers", ""), ("node_service_clients", ""),
             ("node_action_servers", ""), ("node_action_clients", ""), ("node_timers", ""),
-            ("node_parameters", ""), ("description", "")]
+            ("node_parameters", ""), ("description", ""), ("ci_workflow", "")]
 # A YAML answer ends with Esc then Enter.
-AS_YAML = [("node_setup", DOWN * 3), ("interfaces", "\x1b"), ("nodes", "\x1b"), ("description", "")]
+AS_YAML = [("node_setup", DOWN * 3), ("interfaces", "\x1b"), ("nodes", "\x1b"), ("description", ""),
+           ("ci_workflow", "")]
 
 
 @pytest.mark.parametrize("path", [ONE_NODE, AS_YAML], ids=["one node", "as yaml"])

@@ -126,6 +126,7 @@ def test_one_node_prompt_by_prompt_without_yaml(terminal, tmp_path):
     answer(child, "Timers", "0.1")
     answer(child, "Parameters", "max_speed:double=0.5")
     answer(child, "One sentence", "")
+    answer(child, "GitHub Actions workflow", "")
     child.expect(pexpect.EOF, timeout=60)
     child.close()
     assert child.exitstatus == 0, (tmp_path / "terminal.log").read_text()
@@ -164,7 +165,8 @@ def test_interfaces_in_the_workspace_are_offered(template_dir, tmp_path):
         child.expect(r"Found in your workspace: nav_interfaces/msg/Goal")
         child.send("goal:nav_interfaces/msg/Goal\r")
         for prompt in ("subscribes to", "Services it offers", "Services it calls", "Actions it executes",
-                       "Actions it sends", "Timers", "Parameters", "One sentence"):
+                       "Actions it sends", "Timers", "Parameters", "One sentence",
+                       "GitHub Actions workflow"):
             answer(child, prompt, "")
         child.expect(pexpect.EOF, timeout=60)
     finally:

@@ -6,6 +6,10 @@ ROS2_DISTROS = ("humble", "jazzy", "kilted", "rolling")
 ROS1_DISTROS = ("noetic",)
 DISTROS = ROS2_DISTROS + ROS1_DISTROS
 
+# The Ubuntu release each distribution's binary packages are built for (REP 2000), which a
+# CI runner for it uses.
+UBUNTU = {"humble": "22.04", "jazzy": "24.04", "kilted": "24.04", "rolling": "24.04", "noetic": "20.04"}
+
 # The languages each build type builds, the first one being the default for a node.
 BUILD_TYPES = {
     "ament_python": ("python",),
