@@ -31,7 +31,8 @@ sys.path.insert(0, str(ROOT / "extensions"))
 
 # Hypothesis (test_generative.py): the fast tier draws a few answer sets, the same ones on
 # every run, and reports a failure as drawn (shrinking would re-render packages for
-# minutes); HYPOTHESIS_PROFILE=thorough draws many, different each run, and shrinks.
+# minutes); CI draws more of them the same way; HYPOTHESIS_PROFILE=thorough draws many,
+# different each run, and shrinks.
 settings.register_profile(
     "fast", max_examples=15, deadline=None, derandomize=True, database=None, print_blob=True,
     phases=(Phase.explicit, Phase.reuse, Phase.generate),
@@ -41,7 +42,9 @@ settings.register_profile(
     "thorough", max_examples=500, deadline=None, print_blob=True,
     suppress_health_check=(HealthCheck.too_slow, HealthCheck.filter_too_much, HealthCheck.data_too_large),
 )
-settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "fast"))
+# CI draws more sets than the fast tier, still the same ones on every run, within its budget.
+settings.register_profile("ci", parent=settings.get_profile("fast"), max_examples=60)
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci" if os.environ.get("CI") == "true" else "fast"))
 
 
 def pytest_configure(config):

@@ -464,7 +464,7 @@ def valid_answers(draw, max_nodes: int = 3, ros: int | None = None, interfaces: 
         node, parameters_of_node = draw(nodes(name, distro, build_type, own))
         node_list.append(node)
         expected[name] = parameters_of_node
-    answers["nodes"] = node_list if draw(st.integers(0, 3)) else yaml.safe_dump(node_list, allow_unicode=True)
+    answers["nodes"] = node_list if draw(st.integers(0, 3)) else yaml_text(node_list)
     try:
         build_package(answers)
     except AnswerError as error:
@@ -652,15 +652,16 @@ def invalid_answers(draw) -> tuple[dict, str]:
 
 # ----------------------------------------------------------------------------- data files
 
-def write_data_file(answers: dict, path: Path) -> Path:
-    """The answers as a YAML file for `copier copy --data-file` (which reads it with yaml.safe_load).
+def yaml_text(value: object) -> str:
+    """YAML that reads back as `value`: escaped where PyYAML would write a character raw that
+    it reads back as another (NEL, a line break inside a quoted scalar, folds to a space)."""
+    text = yaml.safe_dump(value, allow_unicode=True, sort_keys=False)
+    return text if yaml.safe_load(text) == value else yaml.safe_dump(value, allow_unicode=False, sort_keys=False)
 
-    Escaped where PyYAML would write a character raw that it reads back as another (NEL).
-    """
-    text = yaml.safe_dump(answers, allow_unicode=True, sort_keys=False)
-    if yaml.safe_load(text) != answers:
-        text = yaml.safe_dump(answers, allow_unicode=False, sort_keys=False)
-    path.write_text(text, encoding="utf-8")
+
+def write_data_file(answers: dict, path: Path) -> Path:
+    """The answers as a YAML file for `copier copy --data-file` (which reads it with yaml.safe_load)."""
+    path.write_text(yaml_text(answers), encoding="utf-8")
     return path
 
 
