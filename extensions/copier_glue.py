@@ -372,7 +372,9 @@ class PackageContext(ContextHook):
             # nodes given without a language keep theirs
             rna.update.resolve.keep_languages(context.get("nodes"), previous)
         answers = {key: context.get(key) for key in (*rna.answers.QUESTIONS, "copyright_year")}
-        key = json.dumps([answers, str((context.get('_copier_conf') or {}).get('dst_path'))],
+        # Whether it is an update is part of the key: Copier renders some names before it
+        # says which answers file it updates, and the update's checks must still run.
+        key = json.dumps([answers, str((context.get('_copier_conf') or {}).get('dst_path')), previous is not None],
                          sort_keys=True, default=str)
         if key not in _models:
             try:
@@ -380,6 +382,8 @@ class PackageContext(ContextHook):
             except rna.AnswerError as error:
                 raise UserMessageError(f"rna-template: {error}") from None
             _refuse_to_overwrite(_models[key], context)
+            if previous is not None:
+                _refuse_to_take_over(_models[key], previous, context)
         context["package"] = _models[key]
 
 
@@ -467,6 +471,16 @@ def _question_types(template: str) -> dict[str, str]:
         return {}
     return {name: spec.get("type", "str") for name, spec in questions.items()
             if not name.startswith("_") and isinstance(spec, dict)}
+
+
+def _refuse_to_take_over(package, previous: Mapping, context) -> None:
+    """A node an update adds must not take over a source file of the user's own that has its name."""
+    destination = (context.get("_copier_conf") or {}).get("dst_path")
+    if destination is None:
+        return
+    refused = rna.update.refusals.take_over_error(package, previous, Path(destination))
+    if refused is not None:
+        raise UserMessageError(f"rna-template: {refused}")
 
 
 def _refuse_to_overwrite(package, context) -> None:

@@ -233,6 +233,27 @@ def test_nodes_given_without_a_language_keep_theirs(project):
     assert (destination / "robot/src/planner.cpp").is_file() and (destination / "robot/robot/driver.py").is_file()
 
 
+def test_a_new_node_does_not_take_over_a_file_of_the_users_with_its_name(project):
+    """The user's own planner.py (not built on PlannerBase) stops an update adding a node planner."""
+    destination = project("ament_python")
+    mine = destination / "robot" / "robot" / "planner.py"
+    mine.write_text('"""My own path planner, not a generated node."""\n\n\ndef plan():\n    return []\n')
+    commit_all(destination, "my planner module")
+    nodes = Flavor("ament_python").answers["nodes"] + [{"name": "planner", "language": "python", **PLANNER}]
+    result = run_update(destination, {"nodes": nodes})
+    assert result.returncode != 0
+    assert ("invalid answer to 'nodes': node 'planner': robot/robot/planner.py is already in the package and does not "
+            "build on PlannerBase") in result.stderr
+    assert "Traceback" not in result.stderr
+    assert git("status", "--porcelain", cwd=destination).stdout == ""
+    assert mine.read_text().startswith('"""My own path planner')
+    # Under another name the node is added, and the user's module stays as it was.
+    nodes[-1]["name"] = "path_planner"
+    assert_clean_update(run_update(destination, {"nodes": nodes}), destination)
+    assert (destination / "robot" / "robot" / "path_planner_base.py").is_file()
+    assert mine.read_text().startswith('"""My own path planner')
+
+
 def test_a_language_changed_on_purpose_keeps_the_edited_file(project):
     flavor = Flavor("ament_cmake")
     destination = project("ament_cmake")

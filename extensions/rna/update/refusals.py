@@ -8,6 +8,7 @@ rule and what to do instead.
 from __future__ import annotations
 
 from collections.abc import Mapping
+from pathlib import Path
 
 from .. import distros
 from ..answers import AnswerError
@@ -40,3 +41,28 @@ def hand_edit_error(answers_file: str) -> str:
             f"so this update would change nothing (nothing was written). Restore it as the last update left it "
             f"(git log -p {answers_file}), commit, and give the changed answers to the update instead: "
             f"copier update --trust --data question=value, or --data-file changes.yml")
+
+
+def take_over_error(package, previous: Mapping, destination: Path) -> AnswerError | None:
+    """A node the update adds whose source file is already there, written by the user.
+
+    The template never rewrites a node's own file once it exists, so the new node would
+    run the user's unrelated module (or fail to build against it). A file that builds on
+    the node's base class is the node's own, kept from an earlier update: taken back.
+    """
+    before = {item.get("name") if isinstance(item, Mapping) else str(item)
+              for item in (previous.get("nodes") or []) if item}
+    for node in package.nodes:
+        if node.name in before:
+            continue
+        path = Path(package.dir) / node.user_file
+        try:
+            text = (destination / path).read_text(encoding="utf-8", errors="replace")
+        except OSError:
+            continue
+        if node.base_class_name not in text:
+            return AnswerError("nodes", (
+                f"node '{node.name}': {path} is already in the package and does not build on "
+                f"{node.base_class_name}, so the new node would take over your file (nothing was written). "
+                f"Give the node another name, or move your file first"))
+    return None
