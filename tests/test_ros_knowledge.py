@@ -5,6 +5,8 @@ from __future__ import annotations
 import math
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 import yaml
 from rna import build_package, configs, distros, names
 from rna.dialects import Ros1Cpp, Ros1Python, Ros2Cpp, Ros2Python, cpp, python
@@ -263,6 +265,16 @@ def test_long_python_text_is_split_to_fit():
     lines = long.splitlines()
     assert lines[0] == "(" and all(len(line) <= 99 for line in lines)
     assert eval(long) == "word " * 40  # noqa: S307 - our own literal
+
+
+@settings(max_examples=200)
+@given(text=st.text(min_size=1, max_size=400), column=st.integers(4, 40), indent=st.sampled_from([4, 8, 12]))
+def test_python_text_fits_with_its_trailing_comma_whatever_it_escapes(text, column, indent):
+    # Escapes (`\u200b`, `\\`) widen a part's spelling; the last part is followed by `),`.
+    spelled = python.text_literal(text, column, indent)
+    lines = (" " * column + spelled + ",").splitlines()
+    assert all(len(line) <= 99 for line in lines), lines
+    assert eval(spelled) == text  # noqa: S307 - our own literal
 
 
 @pytest.mark.parametrize(("value", "low", "high", "step", "scalar", "taken"), [

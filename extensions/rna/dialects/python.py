@@ -8,8 +8,8 @@ sorted by module, as in ros2/examples).
 from __future__ import annotations
 
 import math
+import re
 import sys
-import textwrap
 from collections import defaultdict
 from collections.abc import Iterable
 from functools import cached_property
@@ -82,15 +82,35 @@ def docstring_prefix(text: str) -> str:
 
 
 def text_literal(text: str, column: int, indent: int, width: int = 99) -> str:
-    """A string literal starting at `column` that fits in `width` columns.
+    """A string literal starting at `column` that fits in `width` columns, followed by a comma.
 
-    Too long, it becomes parenthesised parts, one per line, indented by `indent`.
+    Too long, it becomes parenthesised parts, one per line, indented by `indent`; each part
+    is cut by its spelled width (an escape is up to ten columns), the last leaving room for
+    the `),` after it.
     """
     spelled = literal(text)
     if column + len(spelled) + 1 <= width:
         return spelled
-    chunks = textwrap.wrap(text, width - indent - 4, drop_whitespace=False)
-    return "(\n" + "\n".join(" " * indent + literal(chunk) for chunk in chunks) + ")"
+    parts = _cut_by_spelling(text, width - indent - len("),"))
+    return "(\n" + "\n".join(" " * indent + literal(part) for part in parts) + ")"
+
+
+def _cut_by_spelling(text: str, room: int) -> list[str]:
+    """`text` in parts whose literals fit `room` columns, cut after spaces where a word fits."""
+    parts, current = [], ""
+    for word in re.findall(r"[^ ]+ *| +", text):
+        if len(literal(current + word)) <= room:
+            current += word
+            continue
+        if current:
+            parts.append(current)
+            current = ""
+        for char in word:
+            if current and len(literal(current + char)) > room:
+                parts.append(current)
+                current = ""
+            current += char
+    return parts + [current] if current else parts
 
 
 def _sort_key(module: str) -> tuple[str, str]:
