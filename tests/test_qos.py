@@ -85,3 +85,13 @@ def test_ros1_takes_the_queue_size_and_latching():
     latched, keep_all = qos.parse("latched"), qos.parse({"history": "keep_all"})
     assert (latched.queue_size, latched.latched) == (1, True)
     assert (keep_all.queue_size, keep_all.latched) == (0, False)
+
+
+@pytest.mark.parametrize(("answer", "ros", "publisher", "words"), [
+    ("latched", 2, True, "latched"), ("default", 2, False, "default (depth 10)"),
+    ({"reliability": "best_effort", "depth": 3}, 2, True, "best_effort, depth 3"),
+    ("latched", 1, True, "queue 1, latched"), ("latched", 1, False, "queue 1"),
+    ({"history": "keep_all"}, 1, True, "queue 0"),
+])
+def test_the_readme_says_the_qos_in_the_words_of_the_ros_generation(answer, ros, publisher, words):
+    assert qos.describe(qos.parse(answer), ros, publisher) == words

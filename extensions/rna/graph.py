@@ -93,8 +93,7 @@ def endpoint_rows(node) -> list[tuple[str, str, str, str]]:
     rows = []
     for label, topics in (("publishes", node.publishers), ("subscribes to", node.subscribers)):
         rows.extend((label, markdown_code(t.topic), markdown_code(t.type.full_name),
-                     qos_words(t.qos) if node.ros == 2 else f"queue {t.qos.queue_size}"
-                     + (", latched" if t.qos.latched and t.role == "publisher" else "")) for t in topics)
+                     qos_words(t.qos, node.ros, t.role == "publisher")) for t in topics)
     for label, endpoints in (("serves", node.service_servers), ("calls", node.service_clients),
                              ("executes goals of", node.action_servers), ("sends goals to", node.action_clients)):
         rows.extend((label, markdown_code(e.name), markdown_code(e.type.full_name), "") for e in endpoints)

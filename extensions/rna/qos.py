@@ -54,8 +54,11 @@ class Qos:
         return (self.reliability, self.durability, self.history) == ("reliable", "volatile", "keep_last")
 
 
-def describe(qos: Qos) -> str:
-    """The QoS in a few words, for the package README: its preset, or its policies."""
+def describe(qos: Qos, ros: int = 2, publisher: bool = False) -> str:
+    """The QoS in a few words, for the package README: its preset, or its policies; for
+    ROS 1, what it maps to (a queue size, and latching on a publisher)."""
+    if ros == 1:
+        return f"queue {qos.queue_size}" + (", latched" if qos.latched and publisher else "")
     if qos.preset:
         return qos.preset if qos.preset != "default" else "default (depth 10)"
     kept = "keep_all" if qos.history == "keep_all" else f"depth {qos.depth}"
