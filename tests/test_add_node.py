@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -189,3 +190,18 @@ def test_a_name_whose_files_are_there_is_refused_at_the_name_question(tmp_path):
     assert " ".join(lines).endswith("config/listener.yaml is already in the package: choose another name")
     assert all(len(line) <= 79 for line in lines)
     assert answer_error({**context, "node_name": "hearer"}, "node_name") == ""
+
+
+@pytest.mark.parametrize("node", ["listener", "n" * 39])
+def test_the_message_after_adding_a_node_keeps_to_80_columns(template_dir, tmp_path, node):
+    """The update command breaks before `--answers-file` when a long node name would pass 80 columns."""
+    package = existing_packages.ament_cmake(tmp_path / "pkg")
+    result = subprocess.run([COPIER, "copy", "--trust", "--defaults", "--vcs-ref=HEAD", "--data=copyright_year=2026",
+                             f"--data=node_name={node}", str(template_dir), str(package)],
+                            capture_output=True, text=True, stdin=subprocess.DEVNULL, timeout=120,
+                            env={**os.environ, "NO_COLOR": "1"})
+    assert result.returncode == 0, result.stderr
+    message = result.stderr[result.stderr.index(f"The {node} node is added."):].splitlines()
+    assert not [line for line in message if len(line) > 79], message
+    command = " ".join(line.strip().removesuffix("\\").strip() for line in message[message.index("  git add -A ."):])
+    assert f"copier update --trust --answers-file .copier-answers.rna-{node}.yml" in command
