@@ -53,6 +53,8 @@ BROKEN = [
     (answers(build_type="ament_python", nodes=[{"name": "a", "language": "cpp"}]), "nodes", "Python nodes only"),
     (node(component=True, language="python"), "nodes", "components are C++ nodes"),
     (node(lifecycle="yes"), "nodes", "true or false"),
+    (node(diagnostics="yes"), "nodes", "diagnostics must be true or false"),
+    (node(diagnostics=True, timers=["diagnostics:1"]), "nodes", "the diagnostics updater"),
     (node(autostart=True), "nodes", "autostart is for lifecycle nodes"),
     (answers(ros_distro="humble", nodes=[{"name": "a", "lifecycle": True, "autostart": True}]), "nodes",
      "autostart needs launch_ros's <lifecycle_node autostart=\"true\">, which humble's XML launch files lack"),
@@ -338,6 +340,22 @@ def test_default_description_says_what_the_nodes_do():
         "The talker node publishes chatter; the listener node subscribes to chatter")
     assert describe_nodes({**VALID, "nodes": [{"name": f"n{i}"} for i in range(4)]}) == "Nodes n0, n1, n2 and n3"
     assert describe_nodes({**VALID, "nodes": "not: [valid"}) == "ROS nodes"
+
+
+def test_diagnostics_in_both_generations():
+    """A node with diagnostics depends on diagnostic_updater (and diagnostic_msgs, for the status levels)."""
+    for distro, build_type in (("jazzy", "ament_cmake"), ("noetic", "catkin")):
+        package = build_package(answers(ros_distro=distro, build_type=build_type, nodes=[
+            {"name": "a", "language": "cpp", "diagnostics": True}, {"name": "b", "language": "python"}]))
+        assert [node.diagnostics for node in package.nodes] == [True, False]
+        assert {"diagnostic_msgs", "diagnostic_updater"} <= set(package.cpp_dependencies)
+        assert "diagnostic_updater" not in package.nodes[1].dependencies
+    # ROS 1 keeps parameters in members: `updater` is the base class's; ROS 2 asks for them by name.
+    error = error_of(answers(ros_distro="noetic", build_type="catkin",
+                             nodes=[{"name": "a", "diagnostics": True, "parameters": ["updater=1"]}]))
+    assert "the diagnostics updater and parameter 'updater'" in str(error)
+    build_package(answers(nodes=[{"name": "a", "diagnostics": True, "parameters": ["updater=1"]}]))
+    build_package(answers(ros_distro="noetic", build_type="catkin", nodes=[{"name": "a", "parameters": ["updater=1"]}]))
 
 
 def test_ros1_rules():

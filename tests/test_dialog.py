@@ -146,6 +146,18 @@ def test_lifecycle_and_component_are_switched_on_and_off_within_the_rules():
     assert "Lifecycle node: yes" in script.menus[2] and "Component (rclcpp_components): yes" in script.menus[3]
 
 
+def test_diagnostics_are_switched_on_and_off_in_both_generations():
+    script = Script(["Edit talker", "Diagnostics", "Done with", "Done"])
+    nodes = dialog.Dialog([{"name": "talker", "language": "cpp"}], rules("ament_cmake"), script).run()
+    assert nodes == [{"name": "talker", "language": "cpp", "diagnostics": True}]
+    assert "Diagnostics (diagnostic_updater, on /diagnostics): no" in script.menus[1]
+    script = Script(["Edit talker", "Diagnostics", "Diagnostics", "Done with", "Done"])
+    ros1 = dialog.Rules("pkg", "catkin", Types(1, distro="noetic"))
+    nodes = dialog.Dialog([{"name": "talker", "language": "python"}], ros1, script).run()
+    assert nodes == [{"name": "talker", "language": "python"}]
+    assert "Diagnostics (diagnostic_updater, on /diagnostics): yes" in script.menus[2]
+
+
 def test_autostart_is_offered_to_lifecycle_nodes_and_goes_with_lifecycle():
     script = Script(["Edit talker", "Lifecycle node: no", "Configured and activated", "Done with", "Edit talker",
                      "Lifecycle node: yes", "Done with", "Done"])

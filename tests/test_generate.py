@@ -210,6 +210,54 @@ def test_python_names_that_clash_are_imported_under_their_package(make_package):
     assert "from turtlesim.msg import Pose as TurtlesimPose" in base
 
 
+def test_ros2_diagnostics_are_wired_as_ros_developers_write_them(make_package):
+    """ROS 2's diagnostic_updater has no wheel here, so the ros tier cannot build these nodes: their code is
+    checked here, as text (the ros tier lints it; the ros1 tier builds and runs the ROS 1 ones)."""
+    package = package_dir(make_package(example("diagnostics")))
+    assert {"diagnostic_msgs", "diagnostic_updater"} <= dependencies(package / "package.xml")["depend"]
+    cmake = (package / "CMakeLists.txt").read_text()
+    assert "find_package(diagnostic_updater REQUIRED)" in cmake and "${diagnostic_updater_TARGETS}" in cmake
+    for node, base_class in (("driver", "DriverBase"), ("camera", "CameraBase")):
+        base = (package / "include" / "monitored_robot" / f"{node}_base.hpp").read_text()
+        assert '#include "diagnostic_updater/diagnostic_updater.hpp"' in base
+        # The updater takes the node's interfaces, a lifecycle node's too, and reports in every state.
+        assert "  diagnostic_updater::Updater updater_{this};\n" in base
+        constructor = base.split("explicit ", 1)[1].split("\n  }\n", 1)[0]
+        assert 'updater_.setHardwareID("none");' in constructor
+        assert f'updater_.add("Status", this, &{base_class}::on_diagnostics);' in constructor
+        assert "virtual void on_diagnostics(diagnostic_updater::DiagnosticStatusWrapper & status)" in base
+        user = (package / "src" / f"{node}.cpp").read_text()
+        for header in ("diagnostic_msgs/msg/diagnostic_status.hpp", "diagnostic_updater/diagnostic_status_wrapper.hpp"):
+            assert f'#include "{header}"' in user
+        assert "void on_diagnostics(diagnostic_updater::DiagnosticStatusWrapper & status) override" in user
+        assert 'status.summary(diagnostic_msgs::msg::DiagnosticStatus::OK, "Running");' in user
+    python = []
+    for node in ("watchdog", "battery"):
+        base = (package / "monitored_robot" / f"{node}_base.py").read_text()
+        constructor = base.split("def __init__", 1)[1].split("\n    def ", 1)[0]
+        assert "import diagnostic_updater\n" in base
+        assert "self.updater = diagnostic_updater.Updater(self)" in constructor
+        assert "self.updater.add('Status', self.on_diagnostics)" in constructor
+        user = (package / "monitored_robot" / f"{node}.py").read_text()
+        assert "from diagnostic_msgs.msg import DiagnosticStatus\n" in user
+        assert "status.summary(DiagnosticStatus.OK, 'Running')\n        return status" in user
+        python += [package / "monitored_robot" / f"{node}_base.py", package / "monitored_robot" / f"{node}.py"]
+    result = subprocess.run([sys.executable, "-m", "ruff", "check", "--no-cache", "--isolated",
+                             "--select", "F,E9,W6", *map(str, python)], capture_output=True, text=True)
+    assert result.returncode == 0, result.stdout + result.stderr
+
+
+def test_the_diagnostics_level_keeps_its_name_beside_a_type_of_the_same_name(make_package):
+    package = package_dir(make_package({"package_name": "health", "build_type": "ament_python", "nodes": [
+        {"name": "probe", "diagnostics": True, "publishers": ["a:robot_msgs/msg/DiagnosticStatus"], "timers": [1]},
+        {"name": "relay", "diagnostics": True, "subscribers": ["b:diagnostic_msgs/msg/DiagnosticStatus"]}]}))
+    probe = (package / "health" / "probe.py").read_text()
+    assert "from robot_msgs.msg import DiagnosticStatus as RobotMsgsDiagnosticStatus" in probe
+    assert "from diagnostic_msgs.msg import DiagnosticStatus\n" in probe
+    relay = (package / "health" / "relay_base.py").read_text()  # diagnostic_msgs' own type: one name for both uses
+    assert "from diagnostic_msgs.msg import DiagnosticStatus\n" in relay
+
+
 def _declared_defaults(path: Path) -> dict:
     """The default of every declare_parameter() / get_param() call in a generated Python file."""
     defaults = {}

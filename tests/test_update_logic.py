@@ -221,6 +221,8 @@ def test_what_an_edited_user_file_must_follow():
     assert "lifecycle" in " ".join(drift.reasons(old, robot(lifecycle=True), "driver", USER_CODE))
     assert "lifecycle" in " ".join(drift.reasons(robot(lifecycle=True), old, "driver", USER_CODE))
     assert "component" in " ".join(drift.reasons(old, robot(component=True), "driver", USER_CODE))
+    assert "diagnostics updater now" in " ".join(drift.reasons(old, robot(diagnostics=True), "driver", USER_CODE))
+    assert "no longer has a diagnostics" in " ".join(drift.reasons(robot(diagnostics=True), old, "driver", USER_CODE))
     [license] = drift.reasons(old, robot("MIT"), "driver", USER_CODE)
     assert "MIT" in license and "Apache-2.0" in license
     [gone] = drift.reasons(old, robot(subscribers=[]), "driver", USER_CODE)  # an override of nothing

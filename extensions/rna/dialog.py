@@ -56,7 +56,8 @@ PARAMETER_TYPES = (*SCALAR_TYPES, *(f"{scalar}[]" for scalar in SCALAR_TYPES))
 COMMON_PACKAGES = ("std_msgs", "geometry_msgs", "sensor_msgs", "nav_msgs", "std_srvs", "example_interfaces")
 
 FLAGS = {"lifecycle": "Lifecycle node", "autostart": "Configured and activated by the launch file (autostart)",
-         "component": "Component (rclcpp_components)"}
+         "component": "Component (rclcpp_components)",
+         "diagnostics": "Diagnostics (diagnostic_updater, on /diagnostics)"}
 BACK = "(empty: back)"  # a name left empty adds nothing
 ADD_NODE = "Add a node"
 DONE = "Done"
@@ -307,11 +308,14 @@ class Dialog:
                 self._change(node, what, not node.get(what))
 
     def flags(self, node: Mapping) -> list[str]:
-        """The yes/no keys a node may change here: ROS 2 nodes, autostart for lifecycle nodes, components in C++."""
+        """The yes/no keys a node may change here: diagnostics; in ROS 2 lifecycle, autostart for lifecycle nodes,
+        components in C++."""
         if self.rules.types.ros != 2:
-            return []
+            return ["diagnostics"]
         flags = ["lifecycle", "autostart"] if node.get("lifecycle") else ["lifecycle"]
-        return flags + ["component"] if node.get("language") == "cpp" or node.get("component") else flags
+        if node.get("language") == "cpp" or node.get("component"):
+            flags.append("component")
+        return flags + ["diagnostics"]
 
     def _change(self, node: dict, key: str, value: object) -> None:
         """Set one key, unless the node would then break a rule: then say which, and keep it."""

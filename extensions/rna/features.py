@@ -26,10 +26,11 @@ def node_features(node) -> frozenset[str]:
     found = {
         "node": True,
         # What rospy's own calls wire up in a ROS 1 base class (an action client is actionlib's alone).
-        "rospy_wiring": bool(node.parameters or set(node.endpoints) - set(node.action_clients)),
+        "rospy_wiring": bool(node.parameters or node.diagnostics or set(node.endpoints) - set(node.action_clients)),
         "lifecycle": node.lifecycle,
         "plain": not node.lifecycle,
         "component": node.component,
+        "diagnostics": node.diagnostics,
         "executable": not node.component,
         "timers": bool(node.timers),
         "services": bool(node.service_servers or node.service_clients),
@@ -57,6 +58,12 @@ ROS2_CPP = {
                        ("lifecycle_msgs/msg/state.hpp", "rclcpp_lifecycle/lifecycle_node.hpp",
                         "rclcpp_lifecycle/lifecycle_publisher.hpp")),
     "component": Needs(("rclcpp_components",), user=("rclcpp_components/register_node_macro.hpp",)),
+    # The base class owns the Updater; the user's status task sets a DiagnosticStatus level.
+    "diagnostics": Needs(("diagnostic_msgs", "diagnostic_updater"),
+                         ("diagnostic_updater/diagnostic_status_wrapper.hpp",
+                          "diagnostic_updater/diagnostic_updater.hpp"),
+                         ("diagnostic_msgs/msg/diagnostic_status.hpp",
+                          "diagnostic_updater/diagnostic_status_wrapper.hpp")),
     "timers": Needs(base=("<chrono>",)),
     "services": Needs(base=("<memory>",)),
     "actions": Needs(("rclcpp_action",), ("<memory>", "rclcpp_action/rclcpp_action.hpp")),
@@ -74,6 +81,8 @@ ROS2_PYTHON = {
                                             "rclpy.executors:SingleThreadedExecutor",
                                             "rclpy.signals:SignalHandlerOptions")),
     "plain": Needs(base=("rclpy.node:Node",)),
+    "diagnostics": Needs(("diagnostic_msgs", "diagnostic_updater"), ("diagnostic_updater",),
+                         ("diagnostic_msgs.msg:DiagnosticStatus",)),
     "lifecycle": Needs(base=("rclpy.lifecycle:Node", "rclpy.lifecycle:State",
                              "rclpy.lifecycle:TransitionCallbackReturn")),
     "sensor_data_qos": Needs(base=("rclpy.qos:qos_profile_sensor_data",)),
@@ -95,6 +104,9 @@ ROS2_PYTHON = {
 
 ROS1_CPP = {
     "node": Needs(("roscpp",), ("ros/ros.h",), ("ros/ros.h",)),
+    "diagnostics": Needs(("diagnostic_msgs", "diagnostic_updater"),
+                         ("diagnostic_updater/DiagnosticStatusWrapper.h", "diagnostic_updater/diagnostic_updater.h"),
+                         ("diagnostic_msgs/DiagnosticStatus.h", "diagnostic_updater/DiagnosticStatusWrapper.h")),
     "actions": Needs(("actionlib", "actionlib_msgs")),
     "action_servers": Needs(base=("actionlib/server/simple_action_server.h",)),
     "action_clients": Needs(base=("actionlib/client/simple_action_client.h",)),
@@ -105,6 +117,8 @@ ROS1_CPP = {
 ROS1_PYTHON = {
     "node": Needs(("rospy",), user=("rospy", "signal")),  # signal: main() holds Ctrl-C in start-up
     "rospy_wiring": Needs(base=("rospy",)),
+    "diagnostics": Needs(("diagnostic_msgs", "diagnostic_updater"), ("diagnostic_updater",),
+                         ("diagnostic_msgs.msg:DiagnosticStatus",)),
     "actions": Needs(("actionlib", "actionlib_msgs")),
     "action_servers": Needs(base=("actionlib:SimpleActionServer",)),
     "action_clients": Needs(base=("actionlib:SimpleActionClient",), user=("actionlib_msgs.msg:GoalStatus",)),

@@ -22,6 +22,8 @@ from .qos import Qos
 
 # Members the generated base classes declare besides the endpoints'.
 BASE_MEMBERS = ("node_handle", "private_node_handle", "start_goal_thread", "goal_threads", "goal_threads_mutex")
+# The method of a node with diagnostics that fills in its status (the updater's task).
+DIAGNOSTICS_TASK = "on_diagnostics"
 
 
 @dataclass(frozen=True)
@@ -159,6 +161,7 @@ class Node:
     lifecycle: bool = False
     autostart: bool = False  # the launch file configures and activates it
     component: bool = False
+    diagnostics: bool = False  # a diagnostic_updater Updater reports the node's status on /diagnostics
     publishers: tuple[Topic, ...] = ()
     subscribers: tuple[Topic, ...] = ()
     service_servers: tuple[Service, ...] = ()
@@ -206,6 +209,13 @@ class Node:
     @property
     def executable(self) -> str:
         return layout.executable(self.name, self.ros, self.language)
+
+    @property
+    def diagnostics_members(self) -> tuple[str, ...]:
+        """Members the base class declares for the diagnostics updater (ROS 1 drives it by a timer)."""
+        if not self.diagnostics:
+            return ()
+        return ("updater", "diagnostics_timer") if self.ros == 1 else ("updater",)
 
     @property
     def endpoints(self) -> tuple:

@@ -98,6 +98,7 @@ def _node() -> dict:
             "lifecycle": {"type": "boolean"},
             "autostart": {"type": "boolean"},
             "component": {"type": "boolean"},
+            "diagnostics": {"type": "boolean"},
             "publishers": _endpoint("msg", "cmd_vel:geometry_msgs/msg/Twist"),
             "subscribers": _endpoint("msg", "odom:nav_msgs/msg/Odometry"),
             "service_servers": _endpoint("srv", "reset:std_srvs/srv/Trigger"),

@@ -61,6 +61,8 @@ def node_summary(node) -> str:
         parts.append("executes " + english_list(a.name for a in node.action_servers) + " goals")
     if node.action_clients:
         parts.append("sends " + english_list(a.name for a in node.action_clients) + " goals")
+    if node.diagnostics:
+        parts.append("reports its status on /diagnostics")
     if not parts:
         return f"The {node.name} node."
     return capitalised(english_list(parts)) + "."

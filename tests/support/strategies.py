@@ -408,6 +408,8 @@ def nodes(draw, name: str, distro: str, build_type: str, own: OwnInterfaces | No
     if ros == 2 and language == "cpp" and draw(st.booleans()):
         node["component"] = draw(st.booleans())
     if draw(st.integers(0, 2)) == 0:
+        node["diagnostics"] = draw(st.booleans())
+    if draw(st.integers(0, 2)) == 0:
         node["description"] = draw(one_line_text(150).filter(lambda text: '"""' not in text))
     small = st.integers(0, 2)
     if draw(small):
@@ -575,7 +577,8 @@ def _break_nodes(draw, answers):
         if ros == 1:
             node[draw(st.sampled_from(("lifecycle", "component")))] = True
         else:
-            flag, value = draw(st.sampled_from((("lifecycle", "yes"), ("component", 1), ("component", True))))
+            flag, value = draw(st.sampled_from((("lifecycle", "yes"), ("component", 1), ("component", True),
+                                                ("diagnostics", "on"))))
             node[flag] = value
             if flag == "component" and value is True:
                 node["language"] = "python"

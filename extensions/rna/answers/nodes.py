@@ -17,7 +17,7 @@ import yaml
 from .. import catalogue, distros, names
 from .. import qos as qos_rules
 from ..interfaces import InterfaceType, parse_interface
-from ..model import BASE_MEMBERS, Action, Node, Service, Timer, Topic
+from ..model import BASE_MEMBERS, DIAGNOSTICS_TASK, Action, Node, Service, Timer, Topic
 from ..qos import Qos
 from ..parameters import INT_RANGE, Parameter, ParameterType, coerce_default, infer_type, on_step, parse_type
 from ..shapes import as_list, check_keys, load_yaml
@@ -226,8 +226,8 @@ def _check_unique(items: Iterable[tuple[str, str]]) -> None:
         seen[name] = label
 
 
-_NODE_KEYS = ("name", "language", "description", "lifecycle", "autostart", "component", "publishers", "subscribers",
-              "service_servers", "service_clients", "action_servers", "action_clients", "timers",
+_NODE_KEYS = ("name", "language", "description", "lifecycle", "autostart", "component", "diagnostics", "publishers",
+              "subscribers", "service_servers", "service_clients", "action_servers", "action_clients", "timers",
               "parameters")
 
 
@@ -252,7 +252,7 @@ def parse_node(item: object, *, package: str, build_type: str, types: Types) -> 
         if error:
             raise ValueError(error)
         flags = {}
-        for flag in ("lifecycle", "autostart", "component"):
+        for flag in ("lifecycle", "autostart", "component", "diagnostics"):
             flags[flag] = item.get(flag, False)
             if not isinstance(flags[flag], bool):
                 raise ValueError(f"{flag} must be true or false")
@@ -278,6 +278,7 @@ def parse_node(item: object, *, package: str, build_type: str, types: Types) -> 
             lifecycle=flags["lifecycle"],
             autostart=flags["autostart"],
             component=flags["component"],
+            diagnostics=flags["diagnostics"],
             publishers=tuple(_parse_topic(x, "publisher", types)
                              for x in as_list(item.get("publishers"), "publishers")),
             subscribers=tuple(_parse_topic(x, "subscriber", types)
@@ -328,10 +329,13 @@ def _check_node_names(node: Node) -> None:
     _check_unique((e.member, e.label) for e in node.endpoints)
     methods = [(method, endpoint.label) for endpoint in node.endpoints for method in endpoint.methods]
     methods.extend((name, "a lifecycle callback") for name in names.LIFECYCLE_CALLBACKS)
+    if node.diagnostics:
+        methods.append((DIAGNOSTICS_TASK, "the diagnostics updater"))
     _check_unique(methods)
     # ROS 1 nodes keep parameters in members named after them; ROS 2 nodes ask for them by name.
     _check_unique([*((e.member, e.label) for e in node.endpoints), *methods,
                    *((name, "a member of the base class") for name in BASE_MEMBERS),
+                   *((name, "the diagnostics updater") for name in node.diagnostics_members),
                    *((p.name, f"parameter '{p.name}'") for p in node.parameters if node.ros == 1)])
 
 

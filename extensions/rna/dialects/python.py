@@ -184,7 +184,17 @@ class PythonDialect:
         imported helper is imported under its package's name: NavMsgsOdometry.
         """
         node = self.node
-        return names.type_aliases(node.interfaces, {node.class_name, node.base_class_name, *RESERVED})
+        return names.type_aliases(node.interfaces, {node.class_name, node.base_class_name, *RESERVED,
+                                                    *self._starter_names})
+
+    @property
+    def _starter_names(self) -> set[str]:
+        """Names the starter code imports besides the node's types: DiagnosticStatus, for its level."""
+        if not self.node.diagnostics or any(
+                (t.package, t.kind, t.name) == ("diagnostic_msgs", "msg", "DiagnosticStatus")
+                for t in self.node.interfaces):
+            return set()
+        return {"DiagnosticStatus"}
 
     def type(self, interface) -> str:
         return self.types[interface]

@@ -2,7 +2,7 @@
 
 A node's user file is the user's once edited: the update never rewrites it. When the
 answers change what that code builds on (the message type of a callback it overrides, a
-C++ callback it overrides that is gone, lifecycle or component switched, the license its
+C++ callback it overrides that is gone, lifecycle, component or diagnostics switched, the license its
 header states), the update says so in its summary and writes the new starter beside the
 file, under a name no build tool or linter picks up, for the user to compare and port.
 """
@@ -57,6 +57,9 @@ def reasons(old: Package, new: Package, name: str, code: str) -> list[str]:
         found.append("it is a lifecycle node now" if after.lifecycle else "it is no longer a lifecycle node")
     if before.component != after.component:
         found.append("it is a component now" if after.component else "it is no longer a component")
+    if before.diagnostics != after.diagnostics:
+        found.append("it has a diagnostics updater now: fill in its status in on_diagnostics" if after.diagnostics
+                     else "it no longer has a diagnostics updater")
     if old.license.spdx != new.license.spdx:
         found.append(f"the license is {new.license.spdx} now: its header still says {old.license.spdx}")
     return found
