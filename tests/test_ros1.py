@@ -119,6 +119,7 @@ def catkin_ws(ros1, template_dir, tmp_path_factory) -> CatkinWorkspace:
     generate(template_dir, path / "src" / "awkward", awkward)
     generate(template_dir, path / "src" / "tracker", TRACKER)
     generate(template_dir, path / "src" / "tracker_same", TRACKER_SAME)
+    generate(template_dir, path / "src" / "diagnosed", DIAGNOSED)
     # A C++ node added to a catkin package written by hand.
     add_node(template_dir, existing_packages.catkin(path / "src" / "hand_rover"),
              {"node_name": "listener", "node_subscribers": "chatter:std_msgs/msg/String"})
@@ -159,6 +160,31 @@ def test_custom_interfaces_between_languages(catkin_ws, package, sender, receive
             sending.wait_for("The approach goal succeeded")
             for process in (receiving, sending):
                 assert_clean_exit(process, process.interrupt())
+
+
+DIAGNOSED = {"package_name": "diagnosed", "ros_distro": "noetic",
+             "description": "Talker and listener reporting their status on diagnostics",
+             "nodes": [_node("talker", "cpp", diagnostics=True, publishers=["chatter:std_msgs/msg/String"],
+                             timers=[0.2]),
+                       _node("listener", "python", diagnostics=True, subscribers=["chatter:std_msgs/msg/String"])]}
+
+
+def test_diagnostics_reach_another_process(catkin_ws):
+    """C++ and Python nodes with `diagnostics: true` publish the starter's status on /diagnostics."""
+    logs = catkin_ws.logs / "diagnostics"
+    with catkin_ws.network("diagnostics") as (prefix, env):
+        nodes = [catkin_ws.node(prefix, env, "diagnosed", name, log=logs / f"{name}.log")
+                 for name in ("cpp_talker", "py_listener")]
+        echo = NodeProcess([*prefix, "rostopic", "echo", "/diagnostics"], env={**env, "PYTHONUNBUFFERED": "1"},
+                           log_path=logs / "echo.log")
+        with started(*nodes, echo):
+            for name in ("cpp_talker", "py_listener"):
+                # A status of the node's task, as its starter fills it in: OK, "Running", no hardware.
+                echo.wait_for(rf'level: 0\s+name: "/?{name}: Status"\s+message: "Running"\s+hardware_id: "none"',
+                              timeout=30)
+            for process in nodes:
+                assert_clean_exit(process, process.interrupt())
+            echo.interrupt()
 
 
 def test_node_added_to_a_hand_written_package_runs(catkin_ws):
@@ -213,7 +239,7 @@ def test_rospy_nodes_stop_cleanly_on_sigint_at_any_moment(catkin_ws):
 
 def test_generated_packages_pass_catkin_lint(catkin_ws):
     for package in ("pairs/pairs", "bringup/bringup", "everything/everything", "tracker/tracker",
-                    "tracker/tracker_interfaces", "tracker_same/tracker_same", "hand_rover",
+                    "tracker/tracker_interfaces", "tracker_same/tracker_same", "hand_rover", "diagnosed/diagnosed",
                     "long_names/target_tracking_navigation_ros1",
                     "long_names/target_tracking_navigation_ros1_interfaces", "awkward/awkward_text"):
         returncode, output = catkin_ws.ros1.catkin_lint(

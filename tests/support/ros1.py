@@ -51,10 +51,13 @@ DEBIAN_PACKAGES = [
     # actionlib.
     "libactionlib-dev", "python3-actionlib",
     "ros-actionlib-msgs", "libactionlib-msgs-dev", "python3-actionlib-msgs",
+    # Nodes with `diagnostics: true`.
+    "libdiagnostic-updater-dev", "python3-diagnostic-updater",
     # Interface packages: definitions, C++ headers, Python modules.
     *(
         form.format(name)
-        for name in ("std-msgs", "std-srvs", "geometry-msgs", "sensor-msgs", "nav-msgs", "move-base-msgs")
+        for name in ("std-msgs", "std-srvs", "geometry-msgs", "sensor-msgs", "nav-msgs", "move-base-msgs",
+                     "diagnostic-msgs")
         for form in ("ros-{}", "lib{}-dev", "python3-{}")
     ),
     # Private network namespaces: ip (netns add, lo up) and nsenter.
