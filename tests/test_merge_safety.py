@@ -780,7 +780,7 @@ def test_answers_changed_through_the_update_are_not_taken_for_hand_edits(project
 
 # ─── What an edited user file must follow ─────────────────────────────────────
 # The user's class builds on its base class: when the answers change what it builds on (a
-# callback's message type, lifecycle, the license in its header), the update names the
+# callback's message type, lifecycle, diagnostics, the license in its header), the update names the
 # file and writes the new starter beside it, under a name build tools and linters skip.
 
 
@@ -795,6 +795,11 @@ def lifecycle_driver(flavor: Flavor, nodes: list[dict]) -> list[dict]:
     return nodes
 
 
+def diagnostics_driver(flavor: Flavor, nodes: list[dict]) -> list[dict]:
+    find_node(nodes, "driver")["diagnostics"] = True
+    return nodes
+
+
 def changed_nodes(change: Callable[[Flavor, list[dict]], list[dict]]) -> Callable[[Flavor], dict]:
     return lambda flavor: {"nodes": change(flavor, with_languages(flavor, flavor.answers["nodes"]))}
 
@@ -803,6 +808,8 @@ DRIFTS = {
     **{f"{name}-callback-message-type": (name, changed_nodes(retype_odom), "PoseStamped now") for name in FLAVORS},
     **{f"{name}-lifecycle-switched-on": (name, changed_nodes(lifecycle_driver), "lifecycle")
        for name in ("ament_python", "ament_cmake")},
+    **{f"{name}-diagnostics-switched-on": (name, changed_nodes(diagnostics_driver), "diagnostics updater")
+       for name in FLAVORS},
     **{f"{name}-license": (name, lambda f: {"license": "MIT", **changed_nodes(lambda _, nodes: nodes)(f)}, "MIT")
        for name in FLAVORS},
 }
