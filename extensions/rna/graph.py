@@ -16,6 +16,7 @@ from . import names
 from .configs import yaml_literal
 from .interfaces import InterfaceType
 from .qos import describe as qos_words
+from .qos import parse as parse_qos
 from .wording import markdown_cell, period_text
 
 
@@ -98,10 +99,10 @@ def endpoint_rows(node) -> list[tuple[str, str, str, str]]:
                              ("executes goals of", node.action_servers), ("sends goals to", node.action_clients)):
         rows.extend((label, markdown_code(e.name), markdown_code(e.type.full_name), "") for e in endpoints)
     rows.extend(("timer", markdown_code(t.id), period_text(t.period), "") for t in node.timers)
-    if node.diagnostics:  # diagnostic_updater's own publisher, a depth of 1 (ROS 1: a queue of 1)
-        array = "diagnostic_msgs/msg/DiagnosticArray" if node.ros == 2 else "diagnostic_msgs/DiagnosticArray"
-        rows.append(("publishes its status on", markdown_code("/diagnostics"), markdown_code(array),
-                     "depth 1" if node.ros == 2 else "queue 1"))
+    if node.diagnostics:  # diagnostic_updater's own publisher, with a depth (ROS 1: a queue) of 1
+        array = InterfaceType("diagnostic_msgs", "msg", "DiagnosticArray", node.ros)
+        rows.append(("publishes its status on", markdown_code("/diagnostics"), markdown_code(array.full_name),
+                     qos_words(parse_qos(1), node.ros, publisher=True)))
     return rows
 
 
