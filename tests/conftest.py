@@ -2,7 +2,7 @@
 
 Tiers (pytest -m):
   (no mark)  fast: extension functions, questions, generated files checked statically
-  ros        ROS 2 Kilted from PyPI wheels: colcon builds, nodes run in separate processes
+  ros        ROS 2 Kilted and Jazzy from PyPI wheels: colcon builds, nodes run in separate processes
   ros1       ROS 1 from Debian packages: catkin builds, node pairs run against a master
   update     copier update flows and merge-safety scenarios (copier and git only)
 
@@ -13,6 +13,7 @@ in tests/support/; test modules import only from there.
 
 from __future__ import annotations
 
+import functools
 import os
 import sys
 from pathlib import Path
@@ -76,10 +77,27 @@ def make_package(template_dir, tmp_path):
     return make
 
 
-@pytest.fixture(scope="session")
-def ros2():
-    """ROS 2 Kilted from PyPI wheels (tests/support/ros2.py): the ros tier, and the linters the ros1 tier borrows."""
+@functools.cache
+def _ros2_environment(distro: str) -> ros2_support.Ros2Environment | Exception:
+    """Each distro's environment set up once per run; a failure too, not retried by every test."""
     try:
-        return ros2_support.ensure_environment()
+        return ros2_support.ensure_environment(distro)
     except Exception as error:  # noqa: BLE001 - any failure means the tier cannot run
-        unavailable(f"ROS 2 Kilted from PyPI wheels could not be set up: {error}")
+        return error
+
+
+@pytest.fixture(scope="session")
+def ros2_of():
+    """ROS 2 of a distro with wheels (tests/support/ros2.py DISTROS), set up on first use."""
+    def of(distro: str) -> ros2_support.Ros2Environment:
+        environment = _ros2_environment(distro)
+        if isinstance(environment, Exception):
+            unavailable(f"ROS 2 {distro.capitalize()} from PyPI wheels could not be set up: {environment}")
+        return environment
+    return of
+
+
+@pytest.fixture(scope="session")
+def ros2(ros2_of):
+    """ROS 2 Kilted from PyPI wheels: the ros tier, and the linters the ros1 tier borrows."""
+    return ros2_of(ros2_support.DEFAULT_DISTRO)

