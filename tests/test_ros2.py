@@ -1,8 +1,11 @@
 """ros tier: generated ROS 2 packages built with colcon and run as separate processes.
 
-ROS 2 Kilted comes from PyPI wheels (tests/support/ros2.py). rclcpp is not on
+ROS 2 Kilted and Jazzy come from PyPI wheels (tests/support/ros2.py). rclcpp is not on
 PyPI, so generated C++ is checked here with the ROS linters only; the nodes that
 run are Python nodes, in ament_python and ament_cmake (ament_cmake_python) packages.
+Kilted runs every test; Jazzy, in a workspace of its own with the packages generated
+for it, the exchange tests (ON_EVERY_DISTRO), its linters on the examples and drawn
+packages.
 """
 
 from __future__ import annotations
@@ -20,8 +23,9 @@ from pathlib import Path
 import pytest
 from support import existing_packages, interrupts
 from support import ros2 as ros2_support
-from support.drawn import check_drawn, code_linters, thorough
-from support.generation import add_node, copy_template, example, examples, generate
+from support import drawn as drawing
+from support.drawn import Drawn, check_drawn, code_linters, thorough
+from support.generation import FIXED_ANSWERS, add_node, copy_template, example, examples, generate
 from support.processes import NodeProcess, assert_clean_exit, started
 from support.strategies import valid_answers
 
@@ -80,25 +84,30 @@ class Workspace:
         return result.stdout
 
 
-@pytest.fixture(scope="session")
-def workspace(ros2, template_dir, tmp_path_factory) -> Workspace:
-    """One workspace with every package the tier runs, generated and built once."""
-    path = tmp_path_factory.mktemp("ros2_ws")
-    generate(template_dir, path / "src" / "rna_demo")  # the defaults
-    generate(template_dir, path / "src" / "robot_services", SERVICES)
-    generate(template_dir, path / "src" / "robot_beacons", CMAKE_PYTHON)
-    generate(template_dir, path / "src" / "tracker", TRACKER)
-    generate(template_dir, path / "src" / "tracker_same", TRACKER_SAME)
-    generate(template_dir, path / "src" / "stoppable", STOPPABLE)
-    generate(template_dir, path / "src" / "data_chain", DATA_CHAIN)
-    generate(template_dir, path / "src" / "busy_robot", BUSY)
-    server = path / "src" / "busy_robot" / "busy_robot" / "busy_robot" / "server.py"
-    server.write_text(server.read_text().replace("for _ in range(3):", "for _ in range(10):"))
-    # Nodes added to packages written by hand (an ament_python and an ament_cmake one).
-    add_node(template_dir, existing_packages.ament_python(path / "src" / "hand_robot"),
-             {"node_name": "listener", "node_subscribers": "chatter:std_msgs/msg/String"})
-    add_node(template_dir, existing_packages.ament_cmake(path / "src" / "hand_driver"),
-             {"node_name": "echo", "node_language": "python", "node_subscribers": "chatter:std_msgs/msg/String"})
+# The packages of the exchange tests, which run on every distro with wheels (parametrized by
+# `workspace`); the others (stress, hand-written packages) run on the main distro only.
+EXCHANGE_PACKAGES = ("rna_demo", "robot_services", "robot_beacons", "tracker_same", "data_chain", "busy_robot")
+ON_EVERY_DISTRO = pytest.mark.parametrize("workspace", ros2_support.DISTROS, indirect=True)
+MAIN_DISTRO, OTHER_DISTROS = ros2_support.DEFAULT_DISTRO, ros2_support.DISTROS[1:]
+
+
+def build_workspace(ros2: ros2_support.Ros2Environment, template_dir: Path, path: Path, logs: Path,
+                    names: tuple[str, ...] | None = None) -> Workspace:
+    """The packages `names` (all when None), generated for the environment's distro and built."""
+    packages = {"rna_demo": None, "robot_services": SERVICES, "robot_beacons": CMAKE_PYTHON, "tracker": TRACKER,
+                "tracker_same": TRACKER_SAME, "stoppable": STOPPABLE, "data_chain": DATA_CHAIN, "busy_robot": BUSY}
+    for name, answers in packages.items():
+        if names is None or name in names:
+            generate(template_dir, path / "src" / name, {**(answers or {}), "ros_distro": ros2.distro})
+    if names is None or "busy_robot" in names:
+        server = path / "src" / "busy_robot" / "busy_robot" / "busy_robot" / "server.py"
+        server.write_text(server.read_text().replace("for _ in range(3):", "for _ in range(10):"))
+    if names is None:
+        # Nodes added to packages written by hand (an ament_python and an ament_cmake one).
+        add_node(template_dir, existing_packages.ament_python(path / "src" / "hand_robot"),
+                 {"node_name": "listener", "node_subscribers": "chatter:std_msgs/msg/String"})
+        add_node(template_dir, existing_packages.ament_cmake(path / "src" / "hand_driver"),
+                 {"node_name": "echo", "node_language": "python", "node_subscribers": "chatter:std_msgs/msg/String"})
     # A user tunes a parameter in the generated config file.
     config = path / "src" / "robot_services" / "robot_services" / "config" / "server.yaml"
     config.write_text(config.read_text().replace("rate: 1.5", "rate: 2.5"))
@@ -106,8 +115,29 @@ def workspace(ros2, template_dir, tmp_path_factory) -> Workspace:
     env = ros2.env(ros2_support.pick_domain_id())
     # ament_lint_auto is not on PyPI: the linters run directly below instead.
     ros2.colcon_build(path, env, "--cmake-args", "-DBUILD_TESTING=OFF")
-    return Workspace(path, ros2.env(ros2_support.pick_domain_id(), [path / "install"]),
-                     tmp_path_factory.mktemp("ros2_logs"), ros2)
+    return Workspace(path, ros2.env(ros2_support.pick_domain_id(), [path / "install"]), logs, ros2)
+
+
+@pytest.fixture(scope="session")
+def workspaces(ros2_of, template_dir, tmp_path_factory):
+    """One workspace per distro, generated and built on first use: the main distro's with every
+    package the tier runs, the others' with those of the exchange tests."""
+    built: dict[str, Workspace] = {}
+
+    def of(distro: str) -> Workspace:
+        if distro not in built:
+            names = None if distro == MAIN_DISTRO else EXCHANGE_PACKAGES
+            built[distro] = build_workspace(ros2_of(distro), template_dir, tmp_path_factory.mktemp(f"ws_{distro}"),
+                                            tmp_path_factory.mktemp(f"ros2_logs_{distro}"), names)
+        return built[distro]
+
+    return of
+
+
+@pytest.fixture
+def workspace(workspaces, request) -> Workspace:
+    """The main distro's workspace, or the distro's a test is parametrized with (ON_EVERY_DISTRO)."""
+    return workspaces(getattr(request, "param", MAIN_DISTRO))
 
 
 def stop_all(*nodes: NodeProcess) -> None:
@@ -115,6 +145,7 @@ def stop_all(*nodes: NodeProcess) -> None:
         assert_clean_exit(node, node.interrupt())
 
 
+@ON_EVERY_DISTRO
 def test_default_talker_reaches_default_listener(workspace):
     with started(workspace.node("rna_demo", "listener"), workspace.node("rna_demo", "talker")) as (listener, talker):
         talker.wait_for(r'Publishing: "Hello World: \d+"')
@@ -122,6 +153,7 @@ def test_default_talker_reaches_default_listener(workspace):
         stop_all(talker, listener)
 
 
+@ON_EVERY_DISTRO
 def test_data_flows_along_a_chain_of_generated_nodes_with_no_code_added(workspace):
     """The detector has no timer: each message it hears is passed on, and a Point built, for the controller."""
     nodes = [workspace.node("data_chain", name) for name in ("controller", "detector", "camera")]
@@ -133,6 +165,7 @@ def test_data_flows_along_a_chain_of_generated_nodes_with_no_code_added(workspac
         stop_all(camera, detector, controller)
 
 
+@ON_EVERY_DISTRO
 def test_launch_file_starts_every_node_with_its_config(workspace):
     """Run exactly what launch/rna_demo.launch.xml says (no `ros2 launch` on PyPI)."""
     launch = ET.parse(workspace.share("rna_demo") / "launch" / "rna_demo.launch.xml").getroot()
@@ -149,6 +182,7 @@ def test_launch_file_starts_every_node_with_its_config(workspace):
         stop_all(*processes)
 
 
+@ON_EVERY_DISTRO
 def test_service_client_gets_the_servers_responses(workspace):
     with started(workspace.node("robot_services", "server"), workspace.node("robot_services", "client")) as (
             server, client):
@@ -160,6 +194,7 @@ def test_service_client_gets_the_servers_responses(workspace):
         stop_all(client, server)
 
 
+@ON_EVERY_DISTRO
 def test_action_client_gets_feedback_and_a_result(workspace):
     with started(workspace.node("robot_services", "server"), workspace.node("robot_services", "client")) as (
             server, client):
@@ -169,6 +204,7 @@ def test_action_client_gets_feedback_and_a_result(workspace):
         stop_all(client, server)
 
 
+@ON_EVERY_DISTRO
 def test_server_stopped_during_a_goal_exits_cleanly(workspace):
     with started(workspace.node("robot_services", "server", log="server_mid_goal"),
                  workspace.node("robot_services", "client", log="client_mid_goal")) as (server, client):
@@ -176,6 +212,7 @@ def test_server_stopped_during_a_goal_exits_cleanly(workspace):
         stop_all(server, client)
 
 
+@ON_EVERY_DISTRO
 def test_a_goal_holds_up_none_of_the_servers_callbacks_and_can_be_canceled(workspace):
     """Goals run in threads of their own: the timer and services go on, cancel requests are served."""
     with started(workspace.node("busy_robot", "server")) as (server,):
@@ -191,6 +228,7 @@ def test_a_goal_holds_up_none_of_the_servers_callbacks_and_can_be_canceled(works
     assert measured["cancel_accepted"] and measured["canceled"], measured
 
 
+@ON_EVERY_DISTRO
 def test_parameters_come_from_the_config_file_and_the_command_line(workspace):
     config = workspace.share("robot_services") / "config" / "server.yaml"
     names = ("rate", "label", "limits", "verbose")
@@ -208,12 +246,14 @@ def test_parameters_come_from_the_config_file_and_the_command_line(workspace):
         stop_all(server)
 
 
+@ON_EVERY_DISTRO
 def test_parameter_range_is_enforced(workspace):
     with started(workspace.node("robot_services", "server", "-p", "rate:=50.0", log="params_range")) as (server,):
         assert server.wait() != 0
         assert re.search(r"rate.*(range|bound)", server.output, re.I | re.S), server.output
 
 
+@ON_EVERY_DISTRO
 def test_lifecycle_node_publishes_once_activated(workspace):
     with started(workspace.node("rna_demo", "listener", log="lifecycle_listener"),
                  workspace.node("robot_beacons", "beacon")) as (listener, beacon):
@@ -225,7 +265,10 @@ def test_lifecycle_node_publishes_once_activated(workspace):
         stop_all(beacon, listener)
 
 
-@pytest.mark.parametrize("package", ["stoppable", "robot_beacons"])  # ament_python, ament_cmake
+# ament_python and ament_cmake on the main distro; the other distros' rclpy with the ament_cmake one.
+@pytest.mark.parametrize(("workspace", "package"), [(MAIN_DISTRO, "stoppable"),
+                                                    *((distro, "robot_beacons") for distro in ros2_support.DISTROS)],
+                         indirect=["workspace"])
 @pytest.mark.parametrize("transitions", [(), ("configure",), ("configure", "activate")],
                          ids=["unconfigured", "inactive", "active"])
 def test_lifecycle_node_stopped_by_sigint_shuts_down_through_its_lifecycle(workspace, package, transitions):
@@ -244,10 +287,13 @@ def test_lifecycle_node_stopped_by_sigint_shuts_down_through_its_lifecycle(works
         assert not re.search(r"\[(WARN|ERROR)\]", beacon.output), beacon.output
 
 
+@pytest.mark.parametrize(("workspace", "package"), [(MAIN_DISTRO, "stoppable"),
+                                                    *((distro, "robot_beacons") for distro in OTHER_DISTROS)],
+                         indirect=["workspace"])
 @pytest.mark.parametrize("transitions", [(), ("configure", "activate")], ids=["unconfigured", "active"])
-def test_lifecycle_node_stopped_by_sigterm_exits_quietly(workspace, transitions):
+def test_lifecycle_node_stopped_by_sigterm_exits_quietly(workspace, package, transitions):
     state = transitions[-1] if transitions else "unconfigured"
-    with started(workspace.node("stoppable", "beacon", log=f"beacon_sigterm_{state}")) as (beacon,):
+    with started(workspace.node(package, "beacon", log=f"{package}_beacon_sigterm_{state}")) as (beacon,):
         workspace.probe("params", "beacon", "use_sim_time")  # up, and rclpy handles SIGTERM
         if transitions:
             workspace.probe("lifecycle", "beacon", *transitions)
@@ -256,8 +302,10 @@ def test_lifecycle_node_stopped_by_sigterm_exits_quietly(workspace, transitions)
         assert not re.search(r"\[(WARN|ERROR)\]", beacon.output), beacon.output
 
 
-@pytest.mark.parametrize(("package", "interfaces"), [("tracker", "tracker_interfaces"),
-                                                     ("tracker_same", "tracker_same")])
+# In a package of their own on the main distro; in the package itself, the harder build, on every distro.
+@pytest.mark.parametrize(("workspace", "package", "interfaces"), [
+    (MAIN_DISTRO, "tracker", "tracker_interfaces"),
+    *((distro, "tracker_same", "tracker_same") for distro in ros2_support.DISTROS)], indirect=["workspace"])
 def test_custom_message_service_and_action_between_nodes(workspace, package, interfaces):
     with started(workspace.node(package, "mover", log=f"{package}_mover"),
                  workspace.node(package, "detector", log=f"{package}_detector")) as (mover, detector):
@@ -278,6 +326,7 @@ def test_nodes_added_to_hand_written_packages_run(workspace):
         stop_all(listener, echo, talker)
 
 
+@ON_EVERY_DISTRO
 def test_ament_cmake_python_node_runs(workspace):
     with started(workspace.node("robot_beacons", "counter")) as (counter,):
         counter.wait_for(r"Publishing: \d+")
@@ -353,23 +402,43 @@ def test_generated_code_passes_the_packages_linters(ros2, example_packages, name
             assert returncode == 0, output
 
 
-# Drawn packages (issue 8): how many the default profile draws; HYPOTHESIS_PROFILE=thorough draws more.
-DRAWN_ROS2 = 24
-DRAWN_ROS2_THOROUGH = 200
-
-
 @pytest.fixture(scope="module")
 def plain_template(tmp_path_factory) -> Path:
     """The template as a plain folder: Copier renders it in place, without cloning it for each package."""
     return copy_template(tmp_path_factory.mktemp("plain_template"))
 
 
-def test_drawn_packages_pass_the_packages_linters(ros2, plain_template, tmp_path):
+@pytest.mark.parametrize("distro", OTHER_DISTROS)
+def test_examples_generated_for_the_distro_pass_its_linters(ros2_of, plain_template, tmp_path, distro):
+    """Every ROS 2 example answers file generated for the distro, under the distro's own linters
+    (its ament_flake8, ament_pep257, ament_cpplint and ament_uncrustify), one call per linter."""
+    ros2 = ros2_of(distro)
+    generated = []
+    for name in examples():
+        answers = example(name)
+        if answers.get("ros_distro") != "noetic":
+            answers = {**FIXED_ANSWERS, **answers, "ros_distro": distro}
+            drawing.copy(plain_template, tmp_path / name, answers)
+            generated.append(Drawn(answers, tmp_path / name))
+    failures = drawing.lint(generated, code_linters(ros2))
+    assert not failures, "\n\n".join(f"{failure.linter.name} ({distro}) on {failure.drawn.destination.name}:\n"
+                                       f"{failure.output}" for failure in failures)
+
+
+# Drawn packages (issue 8): how many the default profile draws per distro; HYPOTHESIS_PROFILE=thorough draws
+# more. The main distro's draws take every ROS 2 distro's answers; the others' their own only.
+DRAWN_ROS2 = {"kilted": 24, "jazzy": 12}
+DRAWN_ROS2_THOROUGH = 200
+
+
+@pytest.mark.parametrize("distro", ros2_support.DISTROS)
+def test_drawn_packages_pass_the_packages_linters(ros2_of, plain_template, tmp_path, distro):
     """Drawn ROS 2 answer sets (both build types, C++ and Python nodes, own interfaces), each package
-    under ament_flake8, ament_pep257, ament_cpplint and ament_uncrustify (tests/support/drawn.py)."""
-    count = DRAWN_ROS2_THOROUGH if thorough() else DRAWN_ROS2
-    drawn, failures = check_drawn(plain_template, tmp_path, valid_answers(ros=2, interfaces=True), count,
-                                  code_linters(ros2))
+    under ament_flake8, ament_pep257, ament_cpplint and ament_uncrustify of the distro (tests/support/drawn.py)."""
+    count = DRAWN_ROS2_THOROUGH if thorough() else DRAWN_ROS2[distro]
+    strategy = valid_answers(ros=2, interfaces=True,
+                             distro=None if distro == MAIN_DISTRO else distro)
+    drawn, failures = check_drawn(plain_template, tmp_path, strategy, count, code_linters(ros2_of(distro)))
     assert drawn == count
     if failures:
         pytest.fail(failures, pytrace=False)

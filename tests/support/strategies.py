@@ -433,14 +433,16 @@ def nodes(draw, name: str, distro: str, build_type: str, own: OwnInterfaces | No
 
 
 @st.composite
-def valid_answers(draw, max_nodes: int = 3, ros: int | None = None, interfaces: bool = False) -> dict:
+def valid_answers(draw, max_nodes: int = 3, ros: int | None = None, interfaces: bool = False,
+                  distro: str | None = None) -> dict:
     """A complete answer set that rna accepts; `answers["_expected"]` holds each node's parameters.
 
-    `ros` keeps to one ROS generation; with `interfaces`, the package often defines its own
-    messages, services and actions, and its nodes use them. Pop `_expected` before handing
-    the answers to Copier.
+    `ros` keeps to one ROS generation, `distro` to one distribution; with `interfaces`, the
+    package often defines its own messages, services and actions, and its nodes use them.
+    Pop `_expected` before handing the answers to Copier.
     """
-    distro = draw(st.sampled_from([d for d in distros.DISTROS if ros in (None, distros.generation(d))]))
+    if distro is None:
+        distro = draw(st.sampled_from([d for d in distros.DISTROS if ros in (None, distros.generation(d))]))
     ros = distros.generation(distro)
     build_type = draw(st.sampled_from(distros.BUILD_TYPES_OF[ros]))
     answers = {
