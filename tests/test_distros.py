@@ -1,0 +1,112 @@
+"""What the generated code does differently per ROS 2 distro, checked statically for each of them.
+
+Kilted and Jazzy are also built and run in the ros tier (PyPI wheels); Humble and Rolling
+have no wheels, so the forms the template chooses for them are checked here only. One
+package per distro holds every construct whose spelling depends on the distro: a C++ node
+with a timer, a Python action server, a lifecycle node the launch file starts, a CI
+workflow. docs/pages/reference/testing.md's table of distros says the same.
+"""
+
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+
+import pytest
+import yaml
+from rna import AnswerError, build_package
+from rna.distros import AUTOSTART_DISTROS, ROS2_DISTROS, UBUNTU
+from support.generation import VALID, generate
+from support.packages import package_dir
+
+ANSWERS = {
+    "package_name": "rover", "build_type": "ament_cmake", "ci_workflow": True,
+    "nodes": [
+        {"name": "driver", "language": "cpp", "timers": [0.1], "publishers": ["odom:nav_msgs/msg/Odometry"]},
+        {"name": "planner", "language": "python", "action_servers": ["fibonacci:test_msgs/action/Fibonacci"]},
+        {"name": "beacon", "language": "python", "lifecycle": True},
+    ],
+}
+
+
+@pytest.fixture(scope="module")
+def packages(template_dir, tmp_path_factory) -> dict:
+    """The package generated once for each ROS 2 distro, with autostart where the distro has it."""
+    made = {}
+    for distro in ROS2_DISTROS:
+        answers = {**ANSWERS, "ros_distro": distro}
+        if distro in AUTOSTART_DISTROS:
+            answers["nodes"] = [*ANSWERS["nodes"][:2], {**ANSWERS["nodes"][2], "autostart": True}]
+        destination = tmp_path_factory.mktemp(distro)
+        generate(template_dir, destination, answers)
+        made[distro] = package_dir(destination)
+    return made
+
+
+@pytest.mark.parametrize("distro", ROS2_DISTROS)
+def test_cpp_timers_use_the_distros_create_timer(packages, distro):
+    """Humble's Node has no create_timer member (Jazzy's rclcpp added it): its free function, on the node's clock."""
+    base = (packages[distro] / "include" / "rover" / "driver_base.hpp").read_text()
+    if distro == "humble":
+        assert "rclcpp::create_timer(\n      this, get_clock(), std::chrono" in base
+    else:
+        assert "= create_timer(\n      std::chrono" in base and "rclcpp::create_timer" not in base
+    assert "wall_timer" not in base  # ROS time, on every distro
+
+
+@pytest.mark.parametrize("distro", ROS2_DISTROS)
+def test_cmake_uses_the_targets_every_distro_has(packages, distro):
+    """target_link_libraries() with exported targets: ament_target_dependencies() is deprecated from Kilted."""
+    cmake = (packages[distro] / "CMakeLists.txt").read_text()
+    assert "ament_target_dependencies" not in cmake
+    assert "${nav_msgs_TARGETS}" in cmake and "rclcpp::rclcpp" in cmake
+
+
+@pytest.mark.parametrize("distro", ROS2_DISTROS)
+def test_python_goals_use_the_rclpy_api_every_distro_has(packages, distro):
+    """Executor.create_future() is new in Kilted's rclpy; Future(executor=...) is in Humble's already."""
+    base = (packages[distro] / "rover" / "planner_base.py").read_text()
+    assert "finished = Future(executor=self.executor)" in base
+    assert "self.executor.create_future" not in base
+
+
+@pytest.mark.parametrize("distro", ROS2_DISTROS)
+def test_python_main_shuts_its_executor_down_before_ros(packages, distro):
+    """Jazzy's rclpy prints a traceback from an executor collected after ROS shut down."""
+    main = (packages[distro] / "rover" / "beacon.py").read_text()
+    assert main.index("executor.shutdown()") < main.index("rclpy.try_shutdown()")
+
+
+@pytest.mark.parametrize("distro", ROS2_DISTROS)
+def test_lifecycle_autostart_where_the_distros_launch_ros_has_it(packages, distro):
+    """<lifecycle_node autostart="true"> from Jazzy on; for Humble the answer is refused and the node is plain."""
+    launch = ET.parse(packages[distro] / "launch" / "rover.launch.xml").getroot()
+    started = {node.get("exec"): node for node in launch}
+    if distro in AUTOSTART_DISTROS:
+        assert started["beacon"].tag == "lifecycle_node" and started["beacon"].get("autostart") == "true"
+    else:
+        assert started["beacon"].tag == "node"
+        nodes = [*ANSWERS["nodes"][:2], {**ANSWERS["nodes"][2], "autostart": True}]
+        with pytest.raises(AnswerError, match=f"which {distro}'s XML launch files lack"):
+            build_package({**VALID, "ros_distro": distro, "nodes": nodes})
+
+
+@pytest.mark.parametrize("distro", ROS2_DISTROS)
+def test_ci_workflow_and_readme_name_the_distro(packages, distro):
+    workflow = yaml.safe_load((packages[distro].parent / ".github" / "workflows" / "ci.yml").read_text())
+    job = next(iter(workflow["jobs"].values()))
+    assert job["runs-on"] == f"ubuntu-{UBUNTU[distro]}"
+    assert str(workflow).count(distro) >= 2  # setup-ros and action-ros-ci
+    assert f"source /opt/ros/{distro}/setup.bash" in (packages[distro].parent / "README.md").read_text()
+
+
+@pytest.mark.parametrize(("distro", "refused"), [("humble", True), ("jazzy", False), ("kilted", False),
+                                                 ("rolling", False)])
+def test_types_are_checked_against_the_distros_own_catalogue(distro, refused):
+    """nav_msgs/msg/Goals came with Jazzy: refused for Humble, where it does not exist."""
+    answers = {**VALID, "ros_distro": distro,
+               "nodes": [{"name": "n", "language": "python", "publishers": ["goals:nav_msgs/msg/Goals"]}]}
+    if refused:
+        with pytest.raises(AnswerError, match=f"not a message of nav_msgs in {distro}"):
+            build_package(answers)
+    else:
+        build_package(answers)
