@@ -332,6 +332,7 @@ class RnaExtension(Extension):
             summary=rna.wording.node_summary,
             summary_lines=rna.wording.summary_lines,
             with_article=rna.wording.with_article,
+            yaml_literal=rna.configs.yaml_literal,
         )
 
 

@@ -221,7 +221,7 @@ def test_a_newcomer_makes_three_nodes_without_yaml(template_dir, tmp_path):
                         tmp_path / "copy.log")
     try:
         for prompt in ("Package name", "full name", "e-mail", "License", "Copyright holder", "ROS distribution",
-                       "ament_python holds"):
+                       "ament_python holds", "Format of the package's launch file"):
             terminal.answer(prompt, "")
         terminal.answer("describe the package's nodes", DOWN * 2)
         terminal.choose("what next?", "Remove talker")
@@ -325,7 +325,7 @@ def test_an_update_can_still_edit_the_nodes_as_yaml(template_dir, tmp_path):
     # Each prompt of an update in turn, with the keys that keep its answer (YAML ends with Esc, Enter).
     try:
         for prompt in ("Package name", "full name", "e-mail", "License", "Copyright holder", "ROS distribution",
-                       "ament_python holds"):
+                       "ament_python holds", "Format of the package's launch file"):
             terminal.answer(prompt, "")
         terminal.answer("Messages, services and actions", "\x1b")
         terminal.child.expect_exact("step by step? (else as YAML)")

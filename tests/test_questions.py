@@ -39,6 +39,9 @@ def copier_copy(template: Path, destination: Path, *args: str) -> subprocess.Com
         (["--data", "license=WTFPL"], "invalid answer to 'license': 'WTFPL' is not one of"),
         (["--data", "ros_distro=noetic", "--data", "build_type=ament_python"],
          "invalid answer to 'build_type': 'ament_python' is not one of catkin for ROS 1"),
+        (["--data", "ros_distro=noetic", "--data", "launch_format=python"],
+         "invalid answer to 'launch_format': roslaunch (ROS 1) reads XML launch files only: python is for ROS 2"),
+        (["--data", "launch_format=json"], "invalid answer to 'launch_format': 'json' is not one of xml, python, yaml"),
         (["--data", "build_type=ament_python", "--data", "interfaces_location=package"],
          "invalid answer to 'interfaces_location': an ament_python package cannot build interfaces"),
         (["--data", "nodes=- name: [unclosed"], "invalid answer to 'nodes': not valid YAML"),
@@ -114,6 +117,7 @@ def test_one_node_prompt_by_prompt_without_yaml(terminal, tmp_path):
     answer(child, "Copyright holder", "")
     answer(child, "ROS distribution", "")
     answer(child, "ament_python holds", DOWN)  # ament_cmake
+    answer(child, "Format of the package's launch file", DOWN)  # Python
     answer(child, "describe the package's nodes", DOWN)  # one node
     answer(child, "Language of the node", DOWN)  # Python, through ament_cmake_python
     answer(child, "Node name", "\b" * 10 + "motion_control")
@@ -132,7 +136,8 @@ def test_one_node_prompt_by_prompt_without_yaml(terminal, tmp_path):
     assert child.exitstatus == 0, (tmp_path / "terminal.log").read_text()
 
     answers = answers_of(tmp_path / "mover")
-    assert answers["build_type"] == "ament_cmake"
+    assert (answers["build_type"], answers["launch_format"]) == ("ament_cmake", "python")
+    assert (tmp_path / "mover" / "mover" / "launch" / "mover.launch.py").is_file()
     node = answers["nodes"][0]
     assert (node["name"], node["language"]) == ("motion_control", "python")
     assert node["subscribers"] == ["odom:nav_msgs/msg/Odometry", "scan:sensor_msgs/msg/LaserScan"]
@@ -157,7 +162,7 @@ def test_interfaces_in_the_workspace_are_offered(template_dir, tmp_path):
     child.logfile_read = (tmp_path / "terminal.log").open("w")
     try:
         for prompt in ("Package name", "full name", "e-mail", "License", "Copyright holder", "ROS distribution",
-                       "ament_python holds"):
+                       "ament_python holds", "Format of the package's launch file"):
             answer(child, prompt, "")
         answer(child, "describe the package's nodes", DOWN)
         answer(child, "Node name", "")

@@ -24,7 +24,19 @@ BASE_FILES = {
 }
 PYTHON_PACKAGE_DIRS = {2: "{package}", 1: "src/{package}"}
 CONFIG_FILE = "config/{name}.yaml"
-LAUNCH_FILES = {2: "launch/{package}.launch.xml", 1: "launch/{package}.launch"}
+# The package's launch file, by (ROS generation, format): roslaunch reads XML only; ROS 2's
+# `ros2 launch` reads launch_ros Python, XML and YAML (launch_xml, launch_yaml), by suffix.
+LAUNCH_FILES = {
+    (2, "xml"): "launch/{package}.launch.xml",
+    (2, "python"): "launch/{package}.launch.py",
+    (2, "yaml"): "launch/{package}.launch.yaml",
+    (1, "xml"): "launch/{package}.launch",
+}
+LAUNCH_FORMATS = {2: ("xml", "python", "yaml"), 1: ("xml",)}
+DEFAULT_LAUNCH_FORMAT = "xml"
+# What setup.py installs from launch/: every ROS 2 format above (and the users' own files in
+# them), as the ROS 2 documentation's packaging guide globs them.
+LAUNCH_GLOB = "launch/*launch.[pxy][yma]*"
 BASE_SUFFIX = "_base"
 
 # Files of a whole package, which a node added to an existing package never writes.
@@ -54,8 +66,19 @@ def executable(name: str, ros: int, language: str) -> str:
     return f"{name}.py" if ros == 1 and language == "python" else name
 
 
-def launch_file(package: str, ros: int) -> str:
-    return LAUNCH_FILES[ros].format(package=package)
+def launch_file(package: str, ros: int, launch_format: str = DEFAULT_LAUNCH_FORMAT) -> str:
+    """The package's launch file, relative to its package folder."""
+    return LAUNCH_FILES[(ros, launch_format)].format(package=package)
+
+
+def launch_format_error(launch_format: object, ros: int) -> str | None:
+    """Why a package of this ROS generation cannot have its launch file in this format, or None."""
+    allowed = LAUNCH_FORMATS[ros]
+    if launch_format in allowed:
+        return None
+    if ros == 1 and launch_format in LAUNCH_FORMATS[2]:
+        return f"roslaunch (ROS 1) reads XML launch files only: {launch_format} is for ROS 2"
+    return f"'{launch_format}' is not one of {', '.join(allowed)}"
 
 
 def python_package_dir(package: str, ros: int) -> str:

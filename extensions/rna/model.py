@@ -9,6 +9,7 @@ it) nor of how a language spells code (rna.dialects).
 from __future__ import annotations
 
 import itertools
+import posixpath
 
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -322,6 +323,7 @@ class Package:
     definitions: tuple[Definition, ...] = ()
     interfaces_location: str = "separate"  # or "package": this package builds them
     target: str = "package"  # or "node": one node added to a package the template did not make
+    launch_format: str = layout.DEFAULT_LAUNCH_FORMAT  # ROS 2: or "python", "yaml"
     # The lab's own (extensions/lab.yml): dependencies of every package, header lines, files.
     lab_dependencies: tuple[tuple[str, str], ...] = ()
     lab_header: str = ""
@@ -343,7 +345,17 @@ class Package:
 
     @property
     def launch_file(self) -> str:
-        return layout.launch_file(self.name, self.ros)
+        return layout.launch_file(self.name, self.ros, self.launch_format)
+
+    @property
+    def launch_file_name(self) -> str:
+        """What `ros2 launch <package>` / `roslaunch <package>` is given."""
+        return posixpath.basename(self.launch_file)
+
+    @property
+    def launch_glob(self) -> str:
+        """What setup.py installs from launch/: the launch file in any format, and the user's own."""
+        return layout.LAUNCH_GLOB
 
     @property
     def user_files(self) -> tuple[str, ...]:

@@ -14,7 +14,7 @@ from functools import cached_property
 
 import yaml
 
-from .. import distros, names, wording
+from .. import distros, layout, names, wording
 from .. import lab as lab_choices
 from ..definitions import Definition
 from ..interfaces import InterfaceType
@@ -26,8 +26,8 @@ from ..shapes import load_yaml, split_list
 
 # The questions whose answers make the package, in the order they are checked.
 QUESTIONS = ("package_name", "description", "maintainer", "maintainer_email", "license",
-             "copyright_holder", "ros_distro", "build_type", "target", "interfaces", "interfaces_location",
-             "nodes")
+             "copyright_holder", "ros_distro", "build_type", "launch_format", "target", "interfaces",
+             "interfaces_location", "nodes")
 
 # Quick one-node questions and the `nodes` key each one fills.
 QUICK_LISTS = {
@@ -107,6 +107,15 @@ class Answers:
         value, allowed = self.raw.get("build_type"), distros.BUILD_TYPES_OF[self.ros]
         if value not in allowed:
             raise ValueError(f"'{value}' is not one of {', '.join(allowed)} for ROS {self.ros}")
+        return value
+
+    def _launch_format(self) -> str:
+        value = self.raw.get("launch_format")
+        if value is None:  # not asked (ROS 1, a node added to a package): the default
+            return layout.DEFAULT_LAUNCH_FORMAT
+        error = layout.launch_format_error(value, self.ros)
+        if error:
+            raise ValueError(error)
         return value
 
     def _target(self) -> str:
@@ -232,6 +241,7 @@ class Answers:
             definitions=read["interfaces"],
             interfaces_location=read["interfaces_location"],
             target=read["target"],
+            launch_format=read["launch_format"],
             lab_dependencies=tuple(lab_choices.dependencies(self.lab)),
             lab_header=self.lab.get("header", ""),
             # A node added to a package the template did not make brings its own files only.
@@ -299,6 +309,10 @@ def check_given(given: Mapping, types: Mapping[str, str] | None = None) -> None:
                 Answers(given).read(question)
             elif question == "build_type" and "ros_distro" in given:
                 Answers(given).read(question)
+            elif question == "launch_format" and "ros_distro" in given:
+                Answers(given).read(question)
+            elif question == "launch_format" and value not in layout.LAUNCH_FORMATS[2]:
+                raise ValueError(f"'{value}' is not one of {', '.join(layout.LAUNCH_FORMATS[2])}")
             elif question == "build_type" and value not in distros.BUILD_TYPES:
                 raise ValueError(f"'{value}' is not one of {', '.join(distros.BUILD_TYPES)}")
             elif question == "interfaces_location":
