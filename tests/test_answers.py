@@ -39,6 +39,9 @@ BROKEN = [
     (answers(copyright_year="soon"), "copyright_year", "not a year"),
     (answers(ros_distro="foxy"), "ros_distro", "is not one of"),
     (answers(build_type="catkin"), "build_type", "for ROS 2"),
+    (answers(launch_format="json"), "launch_format", "'json' is not one of xml, python, yaml"),
+    (answers(ros_distro="noetic", build_type="catkin", launch_format="yaml"), "launch_format",
+     "roslaunch (ROS 1) reads XML launch files only: yaml is for ROS 2"),
     (answers(nodes=[]), "nodes", "at least one node"),
     (answers(nodes="- name: [unclosed"), "nodes", "not valid YAML"),
     (answers(nodes=[{"name": "Driver"}]), "nodes", "lower_snake_case"),
@@ -57,7 +60,8 @@ BROKEN = [
     (node(diagnostics=True, timers=["diagnostics:1"]), "nodes", "the diagnostics updater"),
     (node(autostart=True), "nodes", "autostart is for lifecycle nodes"),
     (answers(ros_distro="humble", nodes=[{"name": "a", "lifecycle": True, "autostart": True}]), "nodes",
-     "autostart needs launch_ros's <lifecycle_node autostart=\"true\">, which humble's XML launch files lack"),
+     "autostart needs launch_ros's <lifecycle_node autostart=\"true\"> (LifecycleNode(autostart=True) in Python), "
+     "which humble's launch_ros lacks"),
     (node(description="two\nlines"), "nodes", "one line"),
     (node(publishers=["chatter"]), "nodes", "write it as topic:type"),
     (node(publishers=["bad topic:std_msgs/msg/String"]), "nodes", "letters, digits and '_'"),
@@ -434,3 +438,14 @@ def test_a_parameter_named_count_is_the_users_and_the_starter_counts_elsewhere(d
          "parameters": ["count:int=3", "count2:int=4"]}])).nodes[0]
     assert node.starter_counter == "count3"
     assert build_package(answers(nodes=[{"name": "a", "timers": [0.5]}])).nodes[0].starter_counter == "count"
+
+
+def test_a_given_launch_format_is_checked_against_the_given_distro():
+    """Copier does not ask launch_format for ROS 1: one given anyway is refused in one line."""
+    with pytest.raises(AnswerError, match="'launch_format': roslaunch .ROS 1. reads XML launch files only"):
+        check_given({"ros_distro": "noetic", "launch_format": "python"}, QUESTION_TYPES)
+    with pytest.raises(AnswerError, match="'launch_format': 'py' is not one of xml, python, yaml"):
+        check_given({"launch_format": "py"}, QUESTION_TYPES)
+    check_given({"ros_distro": "noetic", "launch_format": "xml"}, QUESTION_TYPES)
+    check_given({"launch_format": "yaml"}, QUESTION_TYPES)
+    assert build_package(answers(ros_distro="noetic", build_type="catkin")).launch_file .endswith(".launch")

@@ -27,6 +27,7 @@ from rna import build_package, distros
 from rna.parameters import INT_RANGES
 from rna.update import resolve
 from support.generation import copy_template
+from support.launch_files import description, expected_description
 from support.packages import table_rows_of_wrong_width
 from support.strategies import invalid_answers, read_data_file, valid_answers, write_data_file
 
@@ -128,6 +129,8 @@ def test_a_valid_answer_set_gives_files_that_read_back(template, answers):
                 manifest.find("maintainer").get("email")) == (model.description, model.maintainer,
                                                               model.maintainer_email)
         lint_python(python)
+        if model.ros == 2:  # in any format, the launch file starts every node as the answers say
+            assert description(package / model.launch_file) == expected_description(model)
         assert not table_rows_of_wrong_width((destination / "README.md").read_text(encoding="utf-8"))
 
         for node in model.nodes:

@@ -145,7 +145,7 @@ def lived_in(project: Path, flavor: Flavor) -> Edits:
         edits.after("a console_scripts entry point after END", flavor.build_file,
                     "# END rna-template: add your own executables below",
                     "            'calibrate = robot.calibrate:main',")
-        edits.after("a data_files line", flavor.build_file, "glob('launch/*.launch.xml')),",
+        edits.after("a data_files line", flavor.build_file, "glob('config/*.yaml')),",
                     "        ('share/' + package_name + '/maps', glob('maps/*.yaml')),")
         edits.new_file("a new executable module", "robot/robot/calibrate.py",
                        '"""Calibrates the driver (mine)."""\n\n\ndef main():\n    print(\'calibrating\')\n')

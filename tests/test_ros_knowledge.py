@@ -20,7 +20,7 @@ from support.generation import VALID, example
 @pytest.mark.parametrize(("distro", "refused"), [("jazzy", False), ("kilted", False), ("rolling", False),
                                                 ("humble", True), (None, False)])
 def test_autostart_follows_the_distros_launch_ros(distro, refused):
-    """<lifecycle_node autostart> is in XML launch files from Jazzy on; no distro (yet) refuses nothing."""
+    """launch_ros autostarts lifecycle nodes (XML, YAML and Python) from Jazzy on; no distro (yet) refuses nothing."""
     error = distros.autostart_error(distro)
     assert bool(error) == refused
     if refused:

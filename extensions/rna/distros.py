@@ -21,8 +21,9 @@ BUILD_TYPES_OF = {2: ("ament_cmake", "ament_python"), 1: ("catkin",)}
 BUILDS_INTERFACES = ("ament_cmake", "catkin")
 LANGUAGES = {"cpp": "cpp", "c++": "cpp", "python": "python", "py": "python"}
 LANGUAGE_NAMES = {"cpp": "C++", "python": "Python"}
-# Distributions whose launch_ros has <lifecycle_node autostart="true"> in XML launch files
-# (Jazzy from launch_ros 0.26.12, Kilted from 0.28.6); Humble's has no lifecycle_node element.
+# Distributions whose launch_ros configures and activates a lifecycle node it starts: the
+# autostart of LifecycleNode (Python) and of <lifecycle_node> (XML, YAML), from launch_ros
+# 0.26.12 (Jazzy) and 0.28.6 (Kilted); Humble's has neither, nor a lifecycle_node element.
 AUTOSTART_DISTROS = ("jazzy", "kilted", "rolling")
 
 
@@ -48,8 +49,9 @@ def autostart_error(distro: object) -> str | None:
     """Why a lifecycle node cannot be configured and activated by the launch file, or None."""
     if distro is None or distro in AUTOSTART_DISTROS:
         return None
-    return (f"autostart needs launch_ros's <lifecycle_node autostart=\"true\">, which {distro}'s XML launch files "
-            f"lack ({', '.join(AUTOSTART_DISTROS)} have it): drive the node's transitions from another process")
+    return (f"autostart needs launch_ros's <lifecycle_node autostart=\"true\"> (LifecycleNode(autostart=True) in "
+            f"Python), which {distro}'s launch_ros lacks ({', '.join(AUTOSTART_DISTROS)} have it): drive the "
+            "node's transitions from another process")
 
 
 def language_error(build_type: str, language: str) -> str | None:

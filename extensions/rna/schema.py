@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import keyword
 
-from . import distros, names
+from . import distros, layout, names
 from . import qos as qos_rules
 from .answers import QUICK_LISTS
 from .definitions import SECTIONS
@@ -143,6 +143,8 @@ def answers_schema(docs_url: str = "") -> dict:
         "copyright_year": {"type": "integer", "minimum": 1970, "maximum": 9999},
         "ros_distro": {"enum": list(distros.DISTROS)},
         "build_type": {"enum": list(distros.BUILD_TYPES)},
+        "launch_format": {"enum": list(layout.LAUNCH_FORMATS[2]),
+                          "description": "the launch file's format (ROS 2; ROS 1 launch files are XML)"},
         "target": {"enum": ["package", "node"]},
         "interfaces": _interfaces(),
         "interfaces_location": {"enum": ["separate", "package"]},

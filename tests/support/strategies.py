@@ -28,7 +28,7 @@ from pathlib import Path
 import yaml
 from hypothesis import assume
 from hypothesis import strategies as st
-from rna import AnswerError, build_package, catalogue, distros, names
+from rna import AnswerError, build_package, catalogue, distros, layout, names
 from rna import qos as qos_rules
 from rna.configs import yaml_literal
 from rna.licenses import LICENSES
@@ -456,6 +456,8 @@ def valid_answers(draw, max_nodes: int = 3, ros: int | None = None, interfaces: 
         "ros_distro": distro,
         "build_type": build_type,
     }
+    if ros == 2 and draw(st.integers(0, 3)):  # else the default, XML
+        answers["launch_format"] = draw(st.sampled_from(layout.LAUNCH_FORMATS[2]))
     own = None
     if interfaces and draw(st.booleans()):
         location = "separate"
@@ -636,6 +638,8 @@ BREAKERS = {
     "ros_distro": lambda draw, answers: draw(st.sampled_from(("foxy", "Jazzy", "ros2", "melodic", "", None))),
     "build_type": lambda draw, answers: draw(st.sampled_from(
         ("ament_cmake", "ament_python") if answers["ros_distro"] == "noetic" else ("catkin", "cmake", ""))),
+    "launch_format": lambda draw, answers: draw(st.sampled_from(
+        ("python", "yaml") if answers["ros_distro"] == "noetic" else ("json", "XML", "py", "launch.py", ""))),
     "copyright_year": lambda draw, answers: draw(st.sampled_from(("soon", 1969, 10000, 2026.5, "", None, [2026]))),
     "interfaces": _break_interfaces,
     "interfaces_location": lambda draw, answers: "elsewhere" if answers["build_type"] != "ament_python" or draw(

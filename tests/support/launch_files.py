@@ -1,0 +1,242 @@
+"""A generated ROS 2 launch file in any format, read as one description, to compare the formats.
+
+launch and launch_ros are not on the package registries, so no tier runs a launch file
+(docs/pages/reference/testing.md). What they would do is read here statically: the XML
+and YAML files through the entities and attributes launch's frontends parse (a frontend
+refuses an attribute its action does not read), the Python file through launch_ros's
+Python API, its calls evaluated from the source without importing it. Each reads back as
+the same description: arguments, nodes (package, executable, name, namespace, parameter
+files, lifecycle autostart, condition) and containers with the nodes they load.
+"""
+
+from __future__ import annotations
+
+import ast
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import yaml
+
+# The frontend entities the template writes and the attributes launch / launch_ros parse for
+# each (launch's Action: if, unless; ExecuteProcess: output; launch_ros's Node, LifecycleNode,
+# ComposableNodeContainer, ComposableNode; launch's DeclareLaunchArgument).
+_NODE = {"pkg", "exec", "name", "namespace", "output", "if", "unless", "param", "remap", "args", "ros_args"}
+FRONTEND = {
+    "arg": {"name", "default", "description", "choice"},
+    "node": _NODE,
+    "lifecycle_node": _NODE | {"autostart"},
+    "node_container": _NODE | {"composable_node"},
+    "composable_node": {"pkg", "plugin", "name", "namespace", "param", "remap", "extra_arg"},
+    "param": {"from", "name", "value"},
+}
+BOOLEAN_ATTRIBUTES = {"autostart"}
+# Each name a Python launch file may use: the module that exports it, and its keyword arguments.
+_PY_NODE = {"package", "executable", "name", "namespace", "output", "parameters", "condition", "remappings",
+            "arguments", "ros_arguments"}
+PYTHON_API = {
+    "LaunchDescription": ("launch", set()),
+    "DeclareLaunchArgument": ("launch.actions", {"default_value", "description", "choices"}),
+    "IfCondition": ("launch.conditions", set()),
+    "UnlessCondition": ("launch.conditions", set()),
+    "LaunchConfiguration": ("launch.substitutions", set()),
+    "PathJoinSubstitution": ("launch.substitutions", set()),
+    "Node": ("launch_ros.actions", _PY_NODE),
+    "LifecycleNode": ("launch_ros.actions", _PY_NODE | {"autostart"}),
+    "ComposableNodeContainer": ("launch_ros.actions", _PY_NODE | {"composable_node_descriptions"}),
+    "ComposableNode": ("launch_ros.descriptions", {"package", "plugin", "name", "namespace", "parameters",
+                                                   "remappings", "extra_arguments"}),
+    "FindPackageShare": ("launch_ros.substitutions", set()),
+}
+
+
+def _node(pkg, exec_, name, namespace, params, autostart, condition) -> dict:
+    return {"pkg": pkg, "exec": exec_, "name": name, "namespace": namespace, "params": tuple(params),
+            "autostart": autostart, "condition": condition}
+
+
+def _condition(attributes) -> tuple[str, str] | None:
+    for key in ("if", "unless"):
+        if attributes.get(key) is not None:
+            return key, attributes[key]
+    return None
+
+
+def _description(args: dict, nodes: list[dict], containers: list[dict]) -> dict:
+    return {"args": args, "nodes": nodes, "containers": containers}
+
+
+# ----------------------------------------------------------------------------- XML and YAML
+
+def _check_attributes(tag: str, attributes) -> None:
+    assert tag in FRONTEND, f"<{tag}> is not an entity this template writes"
+    unknown = set(attributes) - FRONTEND[tag]
+    assert not unknown, f"{tag}: launch does not read {sorted(unknown)}"
+
+
+def _true(value) -> bool:
+    return value is True or str(value).lower() == "true"
+
+
+def _read_entities(entities) -> dict:
+    """(tag, attributes, children by tag) of each top-level action, in order, as one description."""
+    args, nodes, containers = {}, [], []
+    for tag, attributes, children in entities:
+        _check_attributes(tag, attributes)
+        for child_tag, items in children.items():
+            for child_attributes, _ in items:
+                _check_attributes(child_tag, child_attributes)
+        params = [attrs["from"] for attrs, _ in children.get("param", [])]
+        if tag == "arg":
+            args[attributes["name"]] = attributes.get("default")
+        elif tag in ("node", "lifecycle_node"):
+            nodes.append(_node(attributes["pkg"], attributes["exec"], attributes.get("name"),
+                               attributes.get("namespace"), params,
+                               tag == "lifecycle_node" and _true(attributes.get("autostart")),
+                               _condition(attributes)))
+        elif tag == "node_container":
+            loaded = []
+            for attrs, grandchildren in children.get("composable_node", []):
+                for param, _ in grandchildren.get("param", []):
+                    _check_attributes("param", param)
+                loaded.append({"pkg": attrs["pkg"], "plugin": attrs["plugin"], "name": attrs.get("name"),
+                               "params": tuple(p["from"] for p, _ in grandchildren.get("param", []))})
+            containers.append({"pkg": attributes["pkg"], "exec": attributes["exec"], "name": attributes["name"],
+                               "namespace": attributes.get("namespace"), "condition": _condition(attributes),
+                               "nodes": loaded})
+    return _description(args, nodes, containers)
+
+
+def _xml_children(element) -> dict:
+    children: dict[str, list] = {}
+    for child in element:
+        children.setdefault(child.tag, []).append((dict(child.attrib), _xml_children(child)))
+    return children
+
+
+def read_xml(text: str) -> dict:
+    root = ET.fromstring(text)
+    assert root.tag == "launch"
+    return _read_entities((child.tag, dict(child.attrib), _xml_children(child)) for child in root)
+
+
+def _yaml_entity(tag: str, body) -> tuple[str, dict, dict]:
+    """launch_yaml's reading: scalars are attributes, lists of mappings are child entities."""
+    assert isinstance(body, dict), f"{tag}: an entity is a mapping"
+    attributes = {key: value for key, value in body.items() if not isinstance(value, list)}
+    children = {key: [_yaml_entity(key, item)[1:] for item in value]
+                for key, value in body.items() if isinstance(value, list)}
+    for key, value in attributes.items():
+        # launch_yaml hands a true/false on to the attributes read as booleans only, text to the others.
+        assert isinstance(value, bool if key in BOOLEAN_ATTRIBUTES else str), f"{tag}: {key}: {value!r}"
+    return tag, attributes, children
+
+
+def read_yaml(text: str) -> dict:
+    document = yaml.safe_load(text)
+    assert list(document) == ["launch"], "a YAML launch file is one `launch:` list"
+    entities = []
+    for item in document["launch"]:
+        assert isinstance(item, dict) and len(item) == 1, f"each action is a mapping of one entity: {item!r}"
+        ((tag, body),) = item.items()
+        entities.append(_yaml_entity(tag, body))
+    return _read_entities(entities)
+
+
+# ----------------------------------------------------------------------------- Python
+
+class _Reader:
+    """Evaluates generate_launch_description()'s statements as launch_ros would build them."""
+
+    def __init__(self, imports: dict[str, str]) -> None:
+        self.imports = imports
+        self.names: dict[str, object] = {}
+
+    def value(self, node: ast.expr):
+        if isinstance(node, ast.Constant):
+            return node.value
+        if isinstance(node, ast.Name):
+            return self.names[node.id]
+        if isinstance(node, ast.List):
+            return [self.value(item) for item in node.elts]
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Name):
+            return self.call(node.func.id, [self.value(arg) for arg in node.args],
+                             {kw.arg: self.value(kw.value) for kw in node.keywords}, node)
+        raise AssertionError(f"line {node.lineno}: {ast.unparse(node)} is more than the launch file needs")
+
+    def call(self, name: str, args: list, kwargs: dict, node: ast.Call):
+        assert name in PYTHON_API, f"line {node.lineno}: {name} is not part of launch or launch_ros's API used here"
+        module, keywords = PYTHON_API[name]
+        assert self.imports.get(name) == module, f"{name} is imported from {self.imports.get(name)}, not {module}"
+        assert set(kwargs) <= keywords, f"line {node.lineno}: {name} takes no {sorted(set(kwargs) - keywords)}"
+        if name == "FindPackageShare":
+            return f"$(find-pkg-share {args[0]})"
+        if name == "LaunchConfiguration":
+            return f"$(var {args[0]})"
+        if name == "PathJoinSubstitution":
+            return "/".join(args[0])
+        if name in ("IfCondition", "UnlessCondition"):
+            return ("if" if name == "IfCondition" else "unless", args[0])
+        return {"call": name, "args": args, **kwargs}
+
+
+def read_python(text: str) -> dict:
+    tree = ast.parse(text)
+    imports = {alias.asname or alias.name: statement.module for statement in tree.body
+               if isinstance(statement, ast.ImportFrom) for alias in statement.names}
+    (function,) = [s for s in tree.body if isinstance(s, ast.FunctionDef)]
+    assert function.name == "generate_launch_description" and not function.args.args
+    reader = _Reader(imports)
+    returned = None
+    for statement in function.body:
+        if isinstance(statement, ast.Expr) and isinstance(statement.value, ast.Constant):
+            continue  # the docstring
+        if isinstance(statement, ast.Assign):
+            (target,) = statement.targets
+            reader.names[target.id] = reader.value(statement.value)
+        elif isinstance(statement, ast.Return):
+            returned = reader.value(statement.value)
+        else:
+            raise AssertionError(f"line {statement.lineno}: unexpected statement")
+    assert returned["call"] == "LaunchDescription"
+    args, nodes, containers = {}, [], []
+    for action in returned["args"][0]:
+        call = action["call"]
+        if call == "DeclareLaunchArgument":
+            args[action["args"][0]] = action.get("default_value")
+        elif call in ("Node", "LifecycleNode"):
+            nodes.append(_node(action["package"], action["executable"], action.get("name"), action.get("namespace"),
+                               action.get("parameters", []), call == "LifecycleNode" and action.get("autostart") is True,
+                               action.get("condition")))
+        elif call == "ComposableNodeContainer":
+            loaded = [{"pkg": d["package"], "plugin": d["plugin"], "name": d.get("name"),
+                       "params": tuple(d.get("parameters", []))} for d in action["composable_node_descriptions"]]
+            containers.append({"pkg": action["package"], "exec": action["executable"], "name": action["name"],
+                               "namespace": action.get("namespace"), "condition": action.get("condition"),
+                               "nodes": loaded})
+        else:
+            raise AssertionError(f"{call} in the LaunchDescription")
+    return _description(args, nodes, containers)
+
+
+READERS = {".xml": read_xml, ".yaml": read_yaml, ".py": read_python}
+
+
+def description(path: Path) -> dict:
+    """The launch file, whatever its format, as one description (asserting it uses launch as documented)."""
+    return READERS[path.suffix](path.read_text(encoding="utf-8"))
+
+
+def expected_description(package) -> dict:
+    """What the package model says its launch file starts."""
+    components = [node for node in package.nodes if node.component]
+    container_condition = ("if", "$(var container)") if components else None
+    args = ({"container": "false", "container_executable": "component_container"} if components else {})
+    config = f"$(find-pkg-share {package.name})/config"
+    nodes = [_node(package.name, node.name, node.name, "" if node.autostart else None,
+                   [f"{config}/{node.name}.yaml"], node.autostart,
+                   ("unless", "$(var container)") if node.component else None) for node in package.nodes]
+    containers = [{"pkg": "rclcpp_components", "exec": "$(var container_executable)",
+                   "name": f"{package.name}_container", "namespace": "", "condition": container_condition,
+                   "nodes": [{"pkg": package.name, "plugin": f"{package.name}::{node.class_name}", "name": node.name,
+                              "params": (f"{config}/{node.name}.yaml",)} for node in components]}]
+    return _description(args, nodes, containers if components else [])

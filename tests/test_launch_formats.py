@@ -1,0 +1,99 @@
+"""The launch file in XML, Python or YAML (`launch_format`): each starts the same nodes the same way.
+
+launch and launch_ros are not on the package registries, so the files are read statically
+(tests/support/launch_files.py) into one description and compared across the formats.
+"""
+
+from __future__ import annotations
+
+import fnmatch
+import re
+
+import pytest
+from rna import build_package, layout
+from support.generation import example
+from support.launch_files import description, expected_description
+from support.packages import dependencies, package_dir
+
+FORMATS = layout.LAUNCH_FORMATS[2]
+SUFFIXES = {"xml": ".launch.xml", "python": ".launch.py", "yaml": ".launch.yaml"}
+
+
+def _nodes(*nodes: dict) -> list[dict]:
+    return list(nodes)
+
+
+# Answer sets for each kind of node the launch file starts differently.
+MATRIX = {
+    "lifecycle": {"package_name": "managed", "build_type": "ament_python", "nodes": _nodes(
+        {"name": "driver", "lifecycle": True, "timers": [0.1]},
+        {"name": "monitor", "lifecycle": True, "autostart": True, "subscribers": ["odom:nav_msgs/msg/Odometry"]})},
+    "components": {**example("camera_components"), "package_name": "pipeline"},
+    "mixed": {"package_name": "mixed", "build_type": "ament_cmake", "ros_distro": "kilted", "nodes": _nodes(
+        {"name": "camera", "language": "cpp", "component": True, "lifecycle": True, "autostart": True},
+        {"name": "viewer", "language": "cpp", "component": True},
+        {"name": "planner", "language": "cpp", "lifecycle": True},
+        {"name": "logger", "language": "python", "parameters": ["rate:double=2.0"]})},
+    "many": {"package_name": "fleet", "build_type": "ament_python",
+             "nodes": [{"name": f"robot_{number}"} for number in range(7)]},
+    "humble": {"package_name": "old_robot", "ros_distro": "humble", "build_type": "ament_cmake", "nodes": _nodes(
+        {"name": "driver", "language": "cpp", "lifecycle": True, "component": True},
+        {"name": "helper", "language": "python"})},
+}
+
+
+@pytest.mark.parametrize("package", [("p", ros, f) for ros, formats in layout.LAUNCH_FORMATS.items()
+                                     for f in formats])
+def test_each_format_has_its_file_name_and_setup_py_installs_it(package):
+    name, ros, launch_format = package
+    path = layout.launch_file(name, ros, launch_format)
+    assert path == ("launch/p.launch" if ros == 1 else f"launch/p{SUFFIXES[launch_format]}")
+    assert fnmatch.fnmatch(path, layout.LAUNCH_GLOB) == (ros == 2)
+    assert layout.launch_format_error(launch_format, ros) is None
+
+
+def test_ros1_launch_files_are_xml_only():
+    assert layout.launch_format_error("python", 1) == ("roslaunch (ROS 1) reads XML launch files only: "
+                                                       "python is for ROS 2")
+    assert layout.launch_format_error("json", 2) == "'json' is not one of xml, python, yaml"
+
+
+@pytest.mark.parametrize("case", sorted(MATRIX))
+def test_every_format_starts_the_same_nodes_the_same_way(make_package, case):
+    descriptions = {}
+    for launch_format in FORMATS:
+        answers = {**MATRIX[case], "launch_format": launch_format}
+        model = build_package({"description": "d", "maintainer": "m", "maintainer_email": "m@example.com",
+                               "license": "MIT", "copyright_holder": "m", "copyright_year": 2026,
+                               "ros_distro": "jazzy", **answers})
+        destination = make_package(answers)
+        package = package_dir(destination)
+        launch = package / model.launch_file
+        assert sorted(p.name for p in (package / "launch").iterdir()) == [launch.name]
+        if launch_format == "python":
+            compile(launch.read_text(), str(launch), "exec")
+        descriptions[launch_format] = description(launch)
+        assert descriptions[launch_format] == expected_description(model), launch_format
+        readme = (destination / "README.md").read_text()
+        assert f"ros2 launch {model.name} {launch.name}\n" in readme
+        assert f"loaded by {model.launch_file}." in (package / "config" / f"{model.nodes[0].name}.yaml").read_text()
+        # The launch files are installed to share/<package>/launch, whatever their format.
+        if model.build_type == "ament_python":
+            assert f"glob('{layout.LAUNCH_GLOB}')" in (package / "setup.py").read_text()
+        else:
+            assert "install(DIRECTORY config launch DESTINATION share/${PROJECT_NAME})" in (
+                package / "CMakeLists.txt").read_text()
+        # A Python launch file imports launch and launch_ros: package.xml says so.
+        launch_packages = {"launch", "launch_ros"} & dependencies(package / "package.xml")["exec_depend"]
+        assert launch_packages == ({"launch", "launch_ros"} if launch_format == "python" else set())
+    assert descriptions["xml"] == descriptions["python"] == descriptions["yaml"]
+
+
+def test_the_managed_block_holds_every_node_in_each_format(make_package):
+    """The user's own actions go below the END marker; the block between the markers is the template's."""
+    for launch_format in FORMATS:
+        destination = make_package({**MATRIX["mixed"], "launch_format": launch_format})
+        package = package_dir(destination)
+        text = next((package / "launch").iterdir()).read_text()
+        block = re.search(r"BEGIN rna-template.*?END rna-template", text, re.S)[0]
+        assert all(f"{name}" in block for name in ("camera", "viewer", "planner", "logger", "mixed_container"))
