@@ -146,7 +146,7 @@ def test_found_lines_wrap_whole_names():
 DOWN = "\x1b[B"
 # The prompts of a first copy in order, with the keys that answer them; ament_cmake asks the language.
 BEFORE_THE_NODES = [("package_name", ""), ("maintainer", ""), ("maintainer_email", ""), ("license", ""),
-                    ("copyright_holder", ""), ("ros_distro", ""), ("build_type", DOWN)]
+                    ("copyright_holder", ""), ("ros_distro", ""), ("build_type", DOWN), ("launch_format", "")]
 ONE_NODE = [("node_setup", DOWN), ("node_language", ""), ("node_name", ""), ("node_publishers", ""),
             ("node_subscribers", ""), ("node_service_servers", ""), ("node_service_clients", ""),
             ("node_action_servers", ""), ("node_action_clients", ""), ("node_timers", ""),

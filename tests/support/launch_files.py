@@ -204,9 +204,9 @@ def read_python(text: str) -> dict:
         if call == "DeclareLaunchArgument":
             args[action["args"][0]] = action.get("default_value")
         elif call in ("Node", "LifecycleNode"):
+            autostart = call == "LifecycleNode" and action.get("autostart") is True
             nodes.append(_node(action["package"], action["executable"], action.get("name"), action.get("namespace"),
-                               action.get("parameters", []), call == "LifecycleNode" and action.get("autostart") is True,
-                               action.get("condition")))
+                               action.get("parameters", []), autostart, action.get("condition")))
         elif call == "ComposableNodeContainer":
             loaded = [{"pkg": d["package"], "plugin": d["plugin"], "name": d.get("name"),
                        "params": tuple(d.get("parameters", []))} for d in action["composable_node_descriptions"]]
