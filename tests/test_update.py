@@ -221,6 +221,36 @@ def test_changing_the_build_type_keeps_each_nodes_language(project, version):
         "python:driver", "python:monitor", "python:logger"}
 
 
+@pytest.mark.parametrize("edited", [False, True], ids=["untouched", "edited"])
+def test_changing_the_launch_format(project, edited):
+    """The launch file of the old format goes when it is the template's own; the user's edited one stays, named."""
+    flavor = Flavor("ament_cmake")
+    destination = project("ament_cmake")
+    old = flavor.launch_file
+    new = f"{PACKAGE}/launch/{PACKAGE}.launch.py"
+    if edited:
+        mine = append_after(destination / old, "<!-- END rna-template: add your own actions below -->",
+                            '  <set_parameter name="use_sim_time" value="true"/>')
+        commit_all(destination)
+
+    result = run_update(destination, {"launch_format": "python"})
+
+    assert not conflicted_files(destination), conflict_excerpts(destination)
+    assert answers_of(destination)["launch_format"] == "python"
+    launch = (destination / new).read_text()
+    assert all(f"executable='{node['name']}'" in launch for node in flavor.answers["nodes"])
+    package_xml = (destination / flavor.package_xml).read_text()
+    assert "<exec_depend>launch_ros</exec_depend>" in package_xml
+    assert f"ros2 launch {PACKAGE} {PACKAGE}.launch.py" in (destination / "README.md").read_text()
+    if edited:
+        assert result.returncode == 1, result
+        assert missing_block(destination / old, mine) is None
+        assert kept_of(result.output)[old] == f"the launch file is Python now: move what you added into {new}"
+    else:
+        assert_clean_update(result, destination)
+        assert not (destination / old).exists()
+
+
 def test_nodes_given_without_a_language_keep_theirs(project):
     """`--data nodes=...` written as the docs do, without `language`, changes no node's language."""
     flavor = Flavor("ament_python")

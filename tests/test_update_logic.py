@@ -232,3 +232,12 @@ def test_what_an_edited_user_file_must_follow():
     assert drift.reasons(robot(**python), robot(**{**python, "subscribers": []}), "driver",
                          "def on_odom(self, msg):") == []  # dead code in Python, not a broken build
     assert drift.STARTER_SUFFIX not in (".py", ".cpp", ".hpp", ".h", ".txt")
+
+
+def test_a_launch_file_of_another_format_is_kept_with_where_its_lines_go():
+    from rna.update.protect import why_gone
+    from support.generation import VALID
+
+    old, new = (rna.build_package({**VALID, "launch_format": launch_format}) for launch_format in ("xml", "yaml"))
+    assert why_gone("robot_driver/launch/robot_driver.launch.xml", old, new) == (
+        "the launch file is YAML now: move what you added into robot_driver/launch/robot_driver.launch.yaml")

@@ -33,6 +33,7 @@ LAUNCH_FILES = {
     (1, "xml"): "launch/{package}.launch",
 }
 LAUNCH_FORMATS = {2: ("xml", "python", "yaml"), 1: ("xml",)}
+LAUNCH_FORMAT_NAMES = {"xml": "XML", "python": "Python", "yaml": "YAML"}
 DEFAULT_LAUNCH_FORMAT = "xml"
 # What setup.py installs from launch/: every ROS 2 format above (and the users' own files in
 # them), as the ROS 2 documentation's packaging guide globs them.

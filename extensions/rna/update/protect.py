@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import posixpath
 
+from .. import layout
 from ..model import Package
 from .project import Project, Render
 from .summary import Report
@@ -56,6 +57,9 @@ def why_gone(path: str, old: Package | None, new: Package | None) -> str:
                 return f"its node '{node.name}' is gone from the answers"
             if names[node.name].language != node.language:
                 return f"node '{node.name}' is written in {names[node.name].language} now"
+    if old.launch_format != new.launch_format and path == _in(old, old.launch_file):
+        return (f"the launch file is {layout.LAUNCH_FORMAT_NAMES[new.launch_format]} now: move what you added into "
+                f"{_in(new, new.launch_file)}")
     if old.interfaces_package and path.startswith(old.interfaces_package + "/"):
         if not new.definitions:
             return "the answers define no interfaces now"
