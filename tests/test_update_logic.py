@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import rna
-from rna.update import blocks, config_merge, drift, merge, refusals, resolve
+from rna.update import blocks, config_merge, drift, merge, protect, refusals, resolve
+from support.generation import VALID
 
 ROS2_CONFIG = "/**:\n  ros__parameters:\n    # Gain\n    gain: {gain}\n\n    frame_id: {frame}\n\n"
 
@@ -235,9 +236,6 @@ def test_what_an_edited_user_file_must_follow():
 
 
 def test_a_launch_file_of_another_format_is_kept_with_where_its_lines_go():
-    from rna.update.protect import why_gone
-    from support.generation import VALID
-
     old, new = (rna.build_package({**VALID, "launch_format": launch_format}) for launch_format in ("xml", "yaml"))
-    assert why_gone("robot_driver/launch/robot_driver.launch.xml", old, new) == (
+    assert protect.why_gone("robot_driver/launch/robot_driver.launch.xml", old, new) == (
         "the launch file is YAML now: move what you added into robot_driver/launch/robot_driver.launch.yaml")
