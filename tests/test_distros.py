@@ -86,7 +86,7 @@ def test_lifecycle_autostart_where_the_distros_launch_ros_has_it(packages, distr
     else:
         assert started["beacon"].tag == "node"
         nodes = [*ANSWERS["nodes"][:2], {**ANSWERS["nodes"][2], "autostart": True}]
-        with pytest.raises(AnswerError, match=f"which {distro}'s XML launch files lack"):
+        with pytest.raises(AnswerError, match=f"which {distro}'s launch_ros lacks"):
             build_package({**VALID, "ros_distro": distro, "nodes": nodes})
 
 
