@@ -27,6 +27,7 @@ from catkin_pkg.package import parse_package
 
 if "support.template_repo" not in sys.modules:  # its asserts explain themselves too
     pytest.register_assert_rewrite("support.template_repo")
+from rna.update import resolve  # noqa: E402
 from support.generation import git  # noqa: E402
 from support.template_repo import (  # noqa: E402
     FLAVORS, NEW_VERSION, OLD_VERSION, PACKAGE, Flavor, answers_of, append_after, broken_packages, commit_all,
@@ -834,3 +835,84 @@ def test_an_edited_user_file_is_told_what_to_follow_with_the_new_starter_beside_
     assert edits.problems() == [], "\n".join(edits.problems())
     assert broken_packages(destination) == [], result
     assert not conflicted_files(destination), conflict_excerpts(destination)
+
+
+# ─── Renames ──────────────────────────────────────────────────────────────────
+# A node answer that says what it was renamed from (`renamed_from`) carries the user's
+# node file (class and base renamed, every line of theirs kept), the tuned config values,
+# the lines inside the node's launch entry and the user's build-file lines that name its
+# target; the answers file records the new name only.
+
+RENAMED = "base_controller"
+
+# The user's lines that name the driver's target, executable or module, outside the blocks.
+NAMES_THE_TARGET = {
+    "ament_python": (lambda f: f.build_file, "# END rna-template: add your own executables below",
+                     "            'drive = robot.driver:main',"),
+    "ament_cmake": (lambda f: f.build_file, "# END rna-template: add your own targets below",
+                    "target_compile_definitions(driver PRIVATE USE_CAN=1)"),
+    "catkin": (lambda f: f.build_file, "# END rna-template: add your own targets below",
+               "target_compile_definitions(${PROJECT_NAME}_driver PRIVATE USE_CAN=1)"),
+}
+
+
+def renamed_driver(flavor: Flavor) -> dict:
+    nodes = with_languages(flavor, flavor.answers["nodes"])
+    driver = find_node(nodes, "driver")
+    driver["name"], driver["renamed_from"] = RENAMED, "driver"
+    return {"nodes": nodes}
+
+
+def renamed_text(line: str) -> str:
+    """A line of the build or launch file as the rename leaves it: the driver's target named anew."""
+    return re.sub(r"(?<![A-Za-z0-9_])((?:\$\{PROJECT_NAME\}_)?)driver(?![A-Za-z0-9_])", rf"\g<1>{RENAMED}", line)
+
+
+@pytest.mark.parametrize("flavor_name", FLAVORS)
+def test_a_renamed_node_carries_the_users_file_values_launch_entry_and_build_lines(project, flavor_name):
+    flavor = Flavor(flavor_name)
+    destination = project(flavor_name)
+    edits = lived_in(destination, flavor)
+    path, anchor, line = NAMES_THE_TARGET[flavor_name]
+    edits.after("a line naming the driver's target", path(flavor), anchor, line)
+    edits.after("a remap inside the driver's launch entry", flavor.launch_file, "config/driver.yaml",
+                '    <remap from="odom" to="/wheel/odom"/>')
+    edits.commit()
+    old_file, new_file = flavor.user_file("driver"), flavor.user_file(RENAMED)
+
+    result = run_update(destination, renamed_driver(flavor))
+
+    assert result.returncode == 0 and not conflicted_files(destination), f"{conflict_excerpts(destination)}{result}"
+    moved = {old_file: new_file, flavor.config_file("driver"): flavor.config_file(RENAMED)}
+    for label, where, lines in edits.blocks:
+        where = moved.get(where, where)
+        if where in (flavor.build_file, flavor.launch_file):
+            lines = [renamed_text(line) for line in lines]
+        assert missing_block(destination / where, lines) is None, f"[{label}] {where}\n{result}"
+    assert not (destination / old_file).exists() and not (destination / flavor.config_file("driver")).exists()
+    code = (destination / new_file).read_text()
+    class_name = "BaseController"
+    assert f"{class_name}Base" in code and not re.search(r"\bDriver(Base)?\b|driver_base", code), code
+    config = (destination / flavor.config_file(RENAMED)).read_text()
+    assert "gain: 1.8  # tuned on the real robot" in config and "the odometry frame of the real robot" in config
+    launch = (destination / flavor.launch_file).read_text()
+    assert f'name="{RENAMED}"' in launch and 'name="driver"' not in launch, launch
+    build = (destination / flavor.build_file).read_text()
+    assert renamed_text(line) in build and line not in build, build
+    answers = (destination / ".copier-answers.yml").read_text()
+    assert "renamed_from" not in answers and resolve.edited_by_hand(answers) is False, answers
+    assert f"{old_file} -> {new_file}" in result.output.replace("\n", " ").replace("   ", " "), result
+    assert broken_packages(destination) == [], result
+
+
+def test_a_rename_naming_no_node_of_the_package_is_refused(project):
+    destination = project("ament_python")
+    answers = renamed_driver(Flavor("ament_python"))
+    find_node(answers["nodes"], RENAMED)["renamed_from"] = "drvier"
+    head = git("rev-parse", "HEAD", cwd=destination).stdout
+
+    result = run_update(destination, answers)
+
+    assert result.returncode != 0 and "renamed_from 'drvier'" in result.output, result
+    assert git("status", "--porcelain", "--untracked-files=all", cwd=destination).stdout == "", result
+    assert git("rev-parse", "HEAD", cwd=destination).stdout == head
