@@ -878,7 +878,7 @@ def test_a_renamed_node_carries_the_users_file_values_launch_entry_and_build_lin
     edits.after("a remap inside the driver's launch entry", flavor.launch_file, "config/driver.yaml",
                 '    <remap from="odom" to="/wheel/odom"/>')
     edits.commit()
-    old_file, new_file = flavor.user_file("driver"), flavor.user_file(RENAMED)
+    old_file, new_file = flavor.user_file("driver"), flavor.user_file(RENAMED, flavor.language("driver"))
 
     result = run_update(destination, renamed_driver(flavor))
 
