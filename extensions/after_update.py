@@ -18,7 +18,7 @@ import yaml
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 from rna import Package, build_package  # noqa: E402 - the template's own package, next to this file
-from rna.update import blocks, config_merge, drift, merge, protect  # noqa: E402
+from rna.update import blocks, config_merge, drift, merge, protect, renames  # noqa: E402
 from rna.update.project import Project, Render, render  # noqa: E402
 from rna.update.summary import Report, changes, summary  # noqa: E402
 
@@ -55,17 +55,23 @@ def main(answers_file: str, project_root: Path | None = None, template: Path = H
     project = Project(project_root or Path.cwd(), answers_file)
     old_answers = yaml.safe_load(project.committed(answers_file) or "{}") or {}
     new_answers = yaml.safe_load(project.text(answers_file) or "{}") or {}
+    renamed = renames.renames(new_answers)  # new name -> old name, said by the answers once
+    if renamed and (consumed := renames.without_renames(project.text(answers_file))) is not None:
+        project.write(answers_file, consumed)
     report = Report()
     with tempfile.TemporaryDirectory(prefix="rna-update-") as scratch:
         old = Render(render(str(template), old_answers["_commit"], old_answers, Path(scratch, "old")))
+        new_answers = renames.without_keys(new_answers)  # the renames are this update's, not answers
         new = Render(render(str(template), new_answers["_commit"], new_answers, Path(scratch, "new")))
         packages = (package_of(old_answers, report), package_of(new_answers, report))
-        protect.keep_edited_files(project, old, new, packages, report)
+        handled = renames.carry_renamed_nodes(project, old, new, packages, renamed, report) \
+            if None not in packages else set()
+        protect.keep_edited_files(project, old, new, packages, report, skip=handled)
         if None not in packages:
             user_files = set(packages[0].user_files) | set(packages[1].user_files)
             protect.refresh_untouched_starters(project, old, new, user_files, report)
-            drift.port_edited_user_files(project, old, new, packages, report)
-        merge.settle_conflicts(project, old, new, report, skip=config_merge.CONFIG)
+            drift.port_edited_user_files(project, old, new, packages, report, renamed)
+        merge.settle_conflicts(project, old, new, report, skip=config_merge.CONFIG, handled=handled)
         config_merge.merge_config_files(project, old, new, packages, report)
         blocks.leave_out_user_declarations(project, new, report)
         blocks.dropped_but_used(project, old, report)
@@ -75,7 +81,8 @@ def main(answers_file: str, project_root: Path | None = None, template: Path = H
         after = snapshot(project, project.current_files(), committed=False)
         generated = {path: old.text(path) for path in before}
     versions = f"{old_answers.get('_commit')} -> {new_answers.get('_commit')}"
-    print(summary(report, changes(before, after, generated, {answers_file}), versions))
+    moved = {path for pair in report.renamed for path in pair}
+    print(summary(report, changes(before, after, generated, {answers_file} | moved), versions))
     return 1 if report.failed else 0
 
 

@@ -51,6 +51,7 @@ try:
     import rna.layout
     import rna.names
     import rna.update.refusals
+    import rna.update.renames
     import rna.update.resolve
     import rna.wording
     import rna.workspace
@@ -154,7 +155,8 @@ def nodes_dialog(context) -> str:
         own = {}
         for (kind, name) in answers.types.own:
             own.setdefault(kind, []).append(name)
-        _dialogs[key] = rna.dialog.Dialog(start, rules, found=found, own=own).run()
+        existing = context.get("edit_nodes") is True and _previous_answers(context) is not None
+        _dialogs[key] = rna.dialog.Dialog(start, rules, found=found, own=own, existing=existing).run()
     return yaml.safe_dump(_dialogs[key], sort_keys=False)
 
 
@@ -277,19 +279,6 @@ def absolute_source(answers: Mapping, cwd: str | None = None) -> dict:
     return recorded
 
 
-def answers_yaml(answers: Mapping) -> str:
-    """The answers file's YAML, as Copier's to_nice_yaml writes it, but always read back the same.
-
-    PyYAML writes some characters raw that it then reads as something else (NEL, U+0085, in a
-    quoted string reads back as a space), and a string parameter default may hold any
-    character: such answers are written with escapes instead.
-    """
-    text = yaml.dump(answers, indent=4, allow_unicode=True, default_flow_style=False)
-    if yaml.safe_load(text) != answers:
-        text = yaml.dump(answers, indent=4, allow_unicode=False, default_flow_style=False)
-    return text
-
-
 class RnaExtension(Extension):
     """Filters and globals for copier.yml and the templates."""
 
@@ -312,7 +301,7 @@ class RnaExtension(Extension):
             endopt=rna.dialects.lines.OPTIONAL_END, yaml_entry=rna.configs.yaml_entry)
         environment.filters.update(
             absolute_source=absolute_source,
-            answers_yaml=answers_yaml,
+            answers_yaml=rna.update.resolve.answers_yaml,
             resolved_answers=rna.update.resolve.resolved,
             answers_checksum=rna.update.resolve.checksum,
             dialect=rna.dialects.dialect,
@@ -368,6 +357,10 @@ class PackageContext(ContextHook):
             _check_given_answers(context)
             return
         previous = _previous_answers(context)
+        renamed = rna.update.renames.rename_error(previous, context,
+                                                  update=str(context.get("_copier_operation")) == "update")
+        if renamed is not None:
+            raise UserMessageError(f"rna-template: invalid answer to 'nodes': {renamed} (nothing was written)")
         if previous is not None:  # an update (the first render in the project comes before any write)
             _refuse_switch(previous, context)
             # nodes given without a language keep theirs

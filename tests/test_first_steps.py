@@ -20,7 +20,8 @@ import pytest
 import yaml
 
 import rna.names
-from copier_glue import absolute_source, answers_yaml
+from copier_glue import absolute_source
+from rna.update.resolve import answers_yaml
 from support.generation import FIXED_ANSWERS, GIT_IDENTITY, ROOT, answers_of, git
 from support.releases import versions
 

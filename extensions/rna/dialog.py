@@ -20,6 +20,7 @@ from . import catalogue, distros, names
 from .answers.nodes import Types, parse_node
 from .interfaces import InterfaceType
 from .parameters import SCALAR_TYPES
+from .update.resolve import RENAMED_FROM
 
 WIDTH = 79  # columns of a line, in an 80-column terminal
 # questionary draws a choice after a 3-column pointer, and the one picked after the
@@ -205,9 +206,12 @@ class Dialog:
     """The nodes, changed one prompt at a time, starting from `nodes`."""
 
     def __init__(self, nodes: object, rules: Rules, asker: Asker | None = None,
-                 found: Sequence[str] = (), own: Mapping[str, Sequence[str]] | None = None) -> None:
+                 found: Sequence[str] = (), own: Mapping[str, Sequence[str]] | None = None,
+                 existing: bool = False) -> None:
+        """`existing`: the nodes are the package's (an update): a node renamed says its old name."""
         self.nodes = [dict(node) if isinstance(node, Mapping) else {"name": str(node)}
                       for node in (copy.deepcopy(nodes) if isinstance(nodes, list) else [])]
+        self.existing = {node["name"] for node in self.nodes} if existing else set()
         self.rules = rules
         for node in self.nodes:  # written out, as the answers file records it
             node.setdefault("language", distros.default_language(rules.build_type))
@@ -301,7 +305,7 @@ class Dialog:
                 if not node[kind.key]:
                     del node[kind.key]
             elif action == "rename":
-                node["name"] = self._rename(node)
+                self._renamed(node, self._rename(node))
             elif action == "language":
                 self._change(node, "language", self._language(str(node.get("language"))))
             elif action == "flag":
@@ -333,6 +337,15 @@ class Dialog:
         others = [other["name"] for other in self.nodes if other is not node]
         return self.ask.text("New name", default=node["name"],
                              validate=lambda answer: self._name_error(node, answer.strip(), others)).strip()
+
+    def _renamed(self, node: dict, name: str) -> None:
+        """The package's own node renamed keeps its old name in `renamed_from`: the update carries its files."""
+        was = node.get(RENAMED_FROM) or (node["name"] if node["name"] in self.existing else None)
+        node["name"] = name
+        if was and was != name:
+            node[RENAMED_FROM] = was
+        else:
+            node.pop(RENAMED_FROM, None)
 
     def _name_error(self, node: Mapping, name: str, others: Sequence[str]) -> str | None:
         """The name's own rules, then those of the node it names (a name that shadows a module...)."""

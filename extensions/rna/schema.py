@@ -99,6 +99,8 @@ def _node() -> dict:
             "autostart": {"type": "boolean"},
             "component": {"type": "boolean"},
             "diagnostics": {"type": "boolean"},
+            "renamed_from": {**_name(_anchored(names.SNAKE_CASE), names.NODE_NAME_MAX,
+                                     "the node's name before this update renames it")},
             "publishers": _endpoint("msg", "cmd_vel:geometry_msgs/msg/Twist"),
             "subscribers": _endpoint("msg", "odom:nav_msgs/msg/Odometry"),
             "service_servers": _endpoint("srv", "reset:std_srvs/srv/Trigger"),

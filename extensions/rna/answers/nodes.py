@@ -228,7 +228,7 @@ def _check_unique(items: Iterable[tuple[str, str]]) -> None:
 
 _NODE_KEYS = ("name", "language", "description", "lifecycle", "autostart", "component", "diagnostics", "publishers",
               "subscribers", "service_servers", "service_clients", "action_servers", "action_clients", "timers",
-              "parameters")
+              "parameters", "renamed_from")
 
 
 def parse_node(item: object, *, package: str, build_type: str, types: Types) -> Node:
@@ -245,6 +245,8 @@ def parse_node(item: object, *, package: str, build_type: str, types: Types) -> 
     ros = types.ros
     try:
         check_keys(item, _NODE_KEYS, "node")
+        if "renamed_from" in item and names.node_name_error(item["renamed_from"]):
+            raise ValueError(f"renamed_from: {names.node_name_error(item['renamed_from'])}")
         language = distros.LANGUAGES.get(str(item.get("language") or distros.default_language(build_type)).lower())
         if language is None:
             raise ValueError(f"language '{item.get('language')}' is not cpp or python")

@@ -210,7 +210,7 @@ def merge(old_text: str, mine_text: str, new_text: str, descriptions: tuple[dict
     return Merged(text, conflicts)
 
 
-def _marked(text: str, conflicts: dict[str, tuple[object, object]]) -> str:
+def marked(text: str, conflicts: dict[str, tuple[object, object]]) -> str:
     """The merged text with each conflicting parameter's line between Copier's conflict markers."""
     lines = text.split("\n")
     places = layout(lines)
@@ -257,7 +257,7 @@ def merge_config_files(project: Project, old: Render, new: Render, packages: tup
             project.write(path, merged.text)
             rejected.write_text(_rejected(path, merged.text, merged.conflicts))
         else:
-            project.write(path, _marked(merged.text, merged.conflicts) if merged.conflicts else merged.text)
+            project.write(path, marked(merged.text, merged.conflicts) if merged.conflicts else merged.text)
             if rejected.exists():
                 rejected.unlink()
         if not merged.conflicts:

@@ -35,9 +35,9 @@ def _used(methods, code: str) -> list[str]:
     return [method for method in methods if method and re.search(rf"\b{re.escape(method)}\b", code)]
 
 
-def reasons(old: Package, new: Package, name: str, code: str) -> list[str]:
-    """What node `name`'s user code (`code`) must follow, one short line each."""
-    before, after = _node(old, name), _node(new, name)
+def reasons(old: Package, new: Package, name: str, code: str, was: str | None = None) -> list[str]:
+    """What node `name`'s user code (`code`) must follow, one short line each (`was`: its name before)."""
+    before, after = _node(old, was or name), _node(new, name)
     if before is None or after is None or before.language != after.language:
         return []  # a node gone or rewritten in another language: its file is kept (protect.py)
     found = []
@@ -66,18 +66,23 @@ def reasons(old: Package, new: Package, name: str, code: str) -> list[str]:
 
 
 def port_edited_user_files(project: Project, old: Render, new: Render, packages: tuple[Package, Package],
-                           report: Report) -> None:
-    """Name each edited user file that must follow a change, with the new starter beside it."""
+                           report: Report, renamed: dict[str, str] | None = None) -> None:
+    """Name each edited user file that must follow a change, with the new starter beside it.
+
+    `renamed`: new node name -> old one (renames.py carried the file)."""
     old_package, new_package = packages
+    renamed = renamed or {}
     for node in new_package.nodes:
-        before = _node(old_package, node.name)
+        was = renamed.get(node.name, node.name)
+        before = _node(old_package, was)
         if before is None or before.language != node.language:
             continue
         path = posixpath.normpath(posixpath.join(new_package.dir, node.user_file))
+        source = posixpath.normpath(posixpath.join(old_package.dir, before.user_file))
         code = project.text(path)
-        if code is None or path not in new.files or not edited(project, old, path):
+        if code is None or path not in new.files or not edited(project, old, source):
             continue  # an untouched starter follows the template itself (protect.py)
-        found = reasons(old_package, new_package, node.name, code)
+        found = reasons(old_package, new_package, node.name, code, was)
         if found:
             starter = path + STARTER_SUFFIX
             project.write(starter, new.text(path))

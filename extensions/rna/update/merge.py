@@ -71,12 +71,15 @@ def merge3(ours: str, base: str, theirs: str) -> tuple[str, bool]:
     return "\n".join(merged), conflicted
 
 
-def settle_conflicts(project: Project, old: Render, new: Render, report: Report, skip: re.Pattern) -> None:
-    """Files Copier left in conflict (markers or .rej) merged again here, kept when no conflict is left."""
+def settle_conflicts(project: Project, old: Render, new: Render, report: Report, skip: re.Pattern,
+                     handled: set[str] = frozenset()) -> None:
+    """Files Copier left in conflict (markers or .rej) merged again here, kept when no conflict is left.
+
+    `skip`: files merged otherwise; `handled`: files an earlier step merged already."""
     for path in sorted(project.current_files()):
         target = path[:-4] if path.endswith(".rej") else path
         text = project.text(target)
-        if skip.search(target) or text is None or not (path.endswith(".rej") or OURS in text):
+        if skip.search(target) or target in handled or text is None or not (path.endswith(".rej") or OURS in text):
             continue
         ours, base, theirs = project.committed(target), old.text(target), new.text(target)
         if None in (ours, base, theirs):

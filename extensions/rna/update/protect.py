@@ -73,9 +73,9 @@ def why_gone(path: str, old: Package | None, new: Package | None) -> str:
 
 
 def keep_edited_files(project: Project, old: Render, new: Render, packages: tuple[Package | None, Package | None],
-                      report: Report) -> None:
-    """Put back each edited file the new answers no longer make (Copier deleted it)."""
-    for path in sorted(old.files - new.files):
+                      report: Report, skip: set[str] = frozenset()) -> None:
+    """Put back each edited file the new answers no longer make (Copier deleted it); `skip`: carried elsewhere."""
+    for path in sorted(old.files - new.files - skip):
         if not edited(project, old, path) or (project.root / path).exists():
             continue
         project.restore(path)

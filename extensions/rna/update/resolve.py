@@ -27,6 +27,7 @@ import yaml
 
 from .. import distros
 
+RENAMED_FROM = "renamed_from"  # a node's old name, during the update that renames it (renames.py)
 CHECKSUM_LINE = "# rna-template checksum of the answers below: "
 _CHECKSUM = re.compile(r"^" + re.escape(CHECKSUM_LINE) + r"([0-9a-f]+)\s*$", re.MULTILINE)
 
@@ -81,12 +82,13 @@ def keep_languages(nodes: object, previous: Mapping) -> list[str]:
     kept = []
     for index, node in enumerate(nodes):
         name = _name(node)
-        if not isinstance(name, str) or name not in before:
+        was = (node.get(RENAMED_FROM) if isinstance(node, Mapping) else None) or name
+        if not isinstance(name, str) or was not in before:
             continue
         if isinstance(node, str):
-            nodes[index] = {"name": node, "language": before[name]}
+            nodes[index] = {"name": node, "language": before[was]}
         elif isinstance(node, dict) and not node.get("language"):
-            node["language"] = before[name]
+            node["language"] = before[was]
         else:
             continue
         kept.append(name)
@@ -114,3 +116,16 @@ def edited_by_hand(text: str) -> bool | None:
     if found is None or not isinstance(answers, dict):
         return None
     return checksum(answers) != found.group(1)
+
+
+def answers_yaml(answers: Mapping) -> str:
+    """The answers file's YAML, as Copier's to_nice_yaml writes it, but always read back the same.
+
+    PyYAML writes some characters raw that it then reads as something else (NEL, U+0085, in a
+    quoted string reads back as a space), and a string parameter default may hold any
+    character: such answers are written with escapes instead.
+    """
+    text = yaml.dump(answers, indent=4, allow_unicode=True, default_flow_style=False)
+    if yaml.safe_load(text) != answers:
+        text = yaml.dump(answers, indent=4, allow_unicode=False, default_flow_style=False)
+    return text

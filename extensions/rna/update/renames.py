@@ -1,0 +1,252 @@
+"""A node renamed carries the user's files, tuned values and lines to its new name.
+
+Copier sees a rename as a node removed and another added: the old node's files go (or
+are kept, when edited), the new one starts from the starter, and the user's lines that
+name the old executable (target_link_libraries(driver ...), a console script, a launch
+remap) name something that no longer exists. A node answer that says what it was renamed
+from (`renamed_from: driver`; the edit_nodes dialog writes it) makes the update carry:
+
+- the user's node file, moved to the new name, the identifiers the template owns in it
+  renamed (the class and its base class, the base module or header, the node's name as
+  the starter wrote it), every other line as the user wrote it;
+- the tuned config file, merged by parameter into the new node's config;
+- the user's lines of the package's build files and launch file that name the old node
+  (its target, executable, module, config file), renamed, then merged as any update;
+- and the answer itself is consumed: the answers file records the new name only.
+"""
+
+from __future__ import annotations
+
+import difflib
+import posixpath
+import re
+from collections.abc import Mapping
+
+import yaml
+
+from ..configs import yaml_literal
+from ..model import Node, Package
+from . import config_merge, merge, resolve
+from .project import Project, Render
+from .protect import edited
+from .summary import Report
+
+KEY = resolve.RENAMED_FROM
+# Files whose lines name a node's target, executable or module, by name.
+BUILD_AND_LAUNCH = re.compile(r"(^|/)(CMakeLists\.txt|setup\.py|setup\.cfg|[^/]*\.launch(\.xml|\.py)?)$")
+
+
+def renames(answers: Mapping) -> dict[str, str]:
+    """new node name -> the name it was renamed from, as the node answers say."""
+    found = {}
+    for node in answers.get("nodes") or []:
+        if isinstance(node, Mapping) and node.get(KEY) and node.get("name"):
+            found[str(node["name"])] = str(node[KEY])
+    return found
+
+
+def rename_error(previous: Mapping | None, answers: Mapping, update: bool = True) -> str | None:
+    """Why the `renamed_from` keys of the answers cannot be followed, or None.
+
+    `previous`: the answers being updated (None outside the project: a copy, or one of the
+    scratch renders of an update, which follow the answers as given).
+    """
+    wanted = renames(answers)
+    if not wanted or (previous is None and update):
+        return None
+    if previous is None:
+        return (f"node '{next(iter(wanted))}': {KEY} is for `copier update` (it names a node of the package "
+                "being updated); a new package has no node to rename")
+    before = {str(node.get("name") if isinstance(node, Mapping) else node) for node in previous.get("nodes") or []}
+    now = {str(node.get("name") if isinstance(node, Mapping) else node) for node in answers.get("nodes") or []}
+    seen: dict[str, str] = {}
+    for new, old in wanted.items():
+        if old == new:
+            continue
+        if old not in before:
+            return f"node '{new}': {KEY} '{old}' is no node of the package ({', '.join(sorted(before))})"
+        if old in now:
+            return f"node '{new}': {KEY} '{old}', but '{old}' is still in the nodes: remove it, or rename another"
+        if old in seen:
+            return f"nodes '{seen[old]}' and '{new}' are both renamed from '{old}'"
+        seen[old] = new
+    return None
+
+
+def without_keys(answers: Mapping) -> dict:
+    """The answers with the `renamed_from` keys left out (what a fresh copy of the new answers is made of)."""
+    nodes = answers.get("nodes")
+    if not isinstance(nodes, list):
+        return dict(answers)
+    return {**answers, "nodes": [{key: value for key, value in node.items() if key != KEY}
+                                 if isinstance(node, Mapping) else node for node in nodes]}
+
+
+def without_renames(answers_text: str) -> str | None:
+    """The answers file with the consumed `renamed_from` keys left out (and its checksum again), or None."""
+    answers = yaml.safe_load(answers_text)
+    if not isinstance(answers, dict) or not renames(answers):
+        return None
+    answers = without_keys(answers)
+    header = [line for line in answers_text.splitlines() if line.startswith("#")]
+    header = [f"{resolve.CHECKSUM_LINE}{resolve.checksum(answers)}" if line.startswith(resolve.CHECKSUM_LINE)
+              else line for line in header]
+    return "\n".join(header) + "\n" + resolve.answers_yaml(answers)
+
+
+# --- rewriting text
+
+
+def _mentions(line: str, old: Node) -> bool:
+    return re.search(rf"\b({re.escape(old.name)}|{re.escape(old.class_name)})", line) is not None
+
+
+def starter_lines(old_starter: str, new_starter: str, old: Node) -> dict[str, str]:
+    """Lines of the old starter the new one writes otherwise because of the name: old line -> new line."""
+    before, after = old_starter.split("\n"), new_starter.split("\n")
+    pairs: dict[str, str] = {}
+    for tag, i1, i2, j1, j2 in difflib.SequenceMatcher(None, before, after, autojunk=False).get_opcodes():
+        if tag != "replace" or i2 - i1 != j2 - j1:
+            continue
+        for line, other in zip(before[i1:i2], after[j1:j2], strict=True):
+            if line.strip() and _mentions(line, old) and pairs.get(line, other) == other:
+                pairs[line] = other
+    return pairs
+
+
+def renamed_code(text: str, old: Node, new: Node, old_starter: str | None, new_starter: str | None) -> str:
+    """The user's node file with what the template owns in it renamed, every other line kept."""
+    pairs = starter_lines(old_starter, new_starter, old) if old_starter and new_starter else {}
+    lines = [pairs.get(line, line) for line in text.split("\n")]
+    result = "\n".join(lines)
+    for before, after in ((old.base_class_name, new.base_class_name), (old.class_name, new.class_name),
+                          (old.base_name, new.base_name)):
+        result = re.sub(rf"\b{re.escape(before)}\b", after, result)
+    # the node's name as a string literal: rospy.init_node('driver'), ros::init(..., "driver")
+    return re.sub(rf"(['\"]){re.escape(old.name)}\1", lambda m: f"{m[1]}{new.name}{m[1]}", result)
+
+
+def _target(old: str, package: str) -> re.Pattern:
+    """The old node's name as a build or launch file names its target, executable, module or config."""
+    prefixes = rf"\$\{{PROJECT_NAME\}}_|{re.escape(package)}_"
+    return re.compile(rf"(?<![A-Za-z0-9_])((?:{prefixes})?){re.escape(old)}(?![A-Za-z0-9_])")
+
+
+def _comment(line: str) -> bool:
+    return line.lstrip().startswith(("#", "<!--"))
+
+
+def renamed_lines(text: str, names: Mapping[str, str], package: str) -> str:
+    """A build or launch file with each line (not a comment) naming an old node renamed."""
+    lines = text.split("\n")
+    for old, new in names.items():
+        pattern = _target(old, package)
+        lines = [line if _comment(line) else pattern.sub(rf"\g<1>{new}", line) for line in lines]
+    return "\n".join(lines)
+
+
+def still_named(text: str, names: Mapping[str, str], package: str) -> list[tuple[int, str]]:
+    """(line number, old name) of each line outside a comment that names an old node."""
+    found = []
+    for number, line in enumerate(text.split("\n"), 1):
+        for old in names:
+            if not _comment(line) and _target(old, package).search(line):
+                found.append((number, old))
+    return found
+
+
+# --- the step of the update
+
+
+def _node(package: Package, name: str) -> Node | None:
+    return next((node for node in package.nodes if node.name == name), None)
+
+
+def _in(package: Package, path: str) -> str:
+    return posixpath.normpath(posixpath.join(package.dir, path))
+
+
+def carry_renamed_nodes(project: Project, old: Render, new: Render, packages: tuple[Package, Package],
+                        names: Mapping[str, str], report: Report) -> set[str]:
+    """Carry each renamed node's files and lines; returns the paths handled here (left alone by later steps)."""
+    old_package, new_package = packages
+    pairs = {before: after for after, before in names.items() if before != after
+             and _node(old_package, before) and _node(new_package, after)}
+    handled: set[str] = set()
+    if not pairs:
+        return handled
+    for before, after in pairs.items():
+        old_node, new_node = _node(old_package, before), _node(new_package, after)
+        handled |= _carry_user_file(project, old, new, packages, old_node, new_node, report)
+        handled |= _carry_config(project, old, new, packages, old_node, new_node, report)
+    handled |= _rename_in_build_and_launch_files(project, old, new, new_package, pairs, report)
+    return handled
+
+
+def _carry_user_file(project, old, new, packages, old_node: Node, new_node: Node, report: Report) -> set[str]:
+    source, target = _in(packages[0], old_node.user_file), _in(packages[1], new_node.user_file)
+    if not edited(project, old, source):
+        return set()  # the starter: the new one follows the template
+    if old_node.language != new_node.language:
+        return set()  # another language: kept and named (protect.py)
+    text = renamed_code(project.committed(source), old_node, new_node, old.text(source), new.text(target))
+    project.restore(source, to=target)  # with its mode: an executable script stays one
+    project.write(target, text)
+    project.remove(source)
+    report.renamed.append((source, target))
+    return {source, target}
+
+
+def _carry_config(project, old, new, packages, old_node: Node, new_node: Node, report: Report) -> set[str]:
+    source, target = _in(packages[0], old_node.config_file), _in(packages[1], new_node.config_file)
+    mine, generated, fresh = project.committed(source), old.text(source), new.text(target)
+    if mine is None or generated is None or fresh is None or mine == generated:
+        return set()
+    pairs = starter_lines(generated, fresh, old_node)
+    mine = "\n".join(pairs.get(line, line) for line in mine.split("\n"))
+    descriptions = (config_merge.descriptions_of(packages[0], source),
+                    config_merge.descriptions_of(packages[1], target))
+    merged = config_merge.merge(generated, mine, fresh, descriptions)
+    if merged is None:
+        return set()  # not YAML the merge reads: kept where it was and named (protect.py)
+    project.write(target, config_merge.marked(merged.text, merged.conflicts) if merged.conflicts else merged.text)
+    project.remove(source)
+    report.renamed.append((source, target))
+    report.merged.add(target)
+    for name, (yours, theirs) in merged.conflicts.items():
+        report.notes.append(f"{target}: you tuned {name} to {yaml_literal(yours)} and its default is now "
+                            f"{yaml_literal(theirs)}: keep one.")
+    return {source, target}
+
+
+def _rename_in_build_and_launch_files(project, old, new, package: Package, pairs: Mapping[str, str],
+                                      report: Report) -> set[str]:
+    """The user's lines naming a renamed node: renamed in the user's text and the old render alike, then merged."""
+    handled = set()
+    folder = f"{package.dir}/" if package.dir != "." else ""
+    for path in sorted(project.committed_files):
+        if not path.startswith(folder) or not BUILD_AND_LAUNCH.search(path):
+            continue
+        mine, generated, fresh = project.committed(path), old.text(path), new.text(path)
+        if mine is None or mine == generated:
+            continue  # untouched: Copier's result is the new render
+        if generated is None or fresh is None:  # the user's own file: said, not rewritten
+            for number, name in still_named(mine, pairs, package.name):
+                report.problems.append(f"{path}:{number} still names the node '{name}', renamed "
+                                       f"'{pairs[name]}': rename it there.")
+            continue
+        ours, base = renamed_lines(mine, pairs, package.name), renamed_lines(generated, pairs, package.name)
+        text, conflicted = merge.merge3(ours, base, fresh)
+        project.write(path, text)
+        rejected = project.root / f"{path}.rej"
+        if rejected.exists():
+            rejected.unlink()
+        if not conflicted:
+            project.resolve_in_index(path)
+        if text != fresh:
+            report.merged.add(path)
+        if ours != mine:
+            report.notes.append(f"{path}: your lines naming {', '.join(sorted(pairs))} now name "
+                                f"{', '.join(pairs[name] for name in sorted(pairs))}.")
+        handled.add(path)
+    return handled
