@@ -357,8 +357,7 @@ class PackageContext(ContextHook):
             _check_given_answers(context)
             return
         previous = _previous_answers(context)
-        renamed = rna.update.renames.rename_error(previous, context,
-                                                  update=str(context.get("_copier_operation")) == "update")
+        renamed = rna.update.renames.rename_error(previous, context, update=_operation() != "copy")
         if renamed is not None:
             raise UserMessageError(f"rna-template: invalid answer to 'nodes': {renamed} (nothing was written)")
         if previous is not None:  # an update (the first render in the project comes before any write)
@@ -379,6 +378,16 @@ class PackageContext(ContextHook):
             if previous is not None:
                 _refuse_to_take_over(_models[key], previous, context)
         context["package"] = _models[key]
+
+
+def _operation() -> str | None:
+    """"copy" or "update": what Copier runs. Its templates see `_copier_operation` in tasks and
+    exclusions only; the scratch renders of an update run as part of it."""
+    try:
+        from copier._main import _operation as operation
+    except ImportError:  # another Copier: renames are checked in the project only
+        return None
+    return operation.get(None)
 
 
 def _refuse_switch(previous: Mapping, answers: Mapping) -> None:

@@ -338,3 +338,15 @@ def test_an_update_can_still_edit_the_nodes_as_yaml(template_dir, tmp_path):
         terminal.close()
     assert terminal.child.exitstatus == 0, (tmp_path / "update.log").read_text()
     assert answers_of(destination)["nodes"] == THREE_NODES
+
+
+def test_a_node_of_the_package_renamed_in_the_dialog_says_its_old_name():
+    script = Script(["Edit talker", "Rename", "speaker", "Rename", "announcer", "Done with",
+                     "Add a node", "fresh", "Rename", "newer", "Done with",
+                     "Edit listener", "Rename", "hearer", "Rename", "listener", "Done with", "Done"])
+    nodes = dialog.Dialog([{"name": "talker"}, {"name": "listener"}], rules(), script, existing=True).run()
+    assert nodes == [{"name": "announcer", "language": "python", "renamed_from": "talker"},
+                     {"name": "listener", "language": "python"}, {"name": "newer", "language": "python"}]
+    first_copy = dialog.Dialog([{"name": "talker"}], rules(), Script(["Edit talker", "Rename", "speaker",
+                                                                     "Done with", "Done"])).run()
+    assert first_copy == [{"name": "speaker", "language": "python"}]

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import rna
-from rna.update import blocks, config_merge, drift, merge, protect, refusals, resolve
+from rna.update import blocks, config_merge, drift, merge, protect, refusals, renames, resolve
 from support.generation import VALID
 
 ROS2_CONFIG = "/**:\n  ros__parameters:\n    # Gain\n    gain: {gain}\n\n    frame_id: {frame}\n\n"
@@ -239,3 +239,82 @@ def test_a_launch_file_of_another_format_is_kept_with_where_its_lines_go():
     old, new = (rna.build_package({**VALID, "launch_format": launch_format}) for launch_format in ("xml", "yaml"))
     assert protect.why_gone("robot_driver/launch/robot_driver.launch.xml", old, new) == (
         "the launch file is YAML now: move what you added into robot_driver/launch/robot_driver.launch.yaml")
+
+
+# --- renames
+
+
+def _node(name: str, language: str = "cpp", ros: int = 2) -> rna.model.Node:
+    return rna.model.Node(name=name, language=language, package="robot", ros=ros)
+
+
+def test_a_renamed_nodes_code_keeps_every_user_line_and_renames_what_the_template_owns():
+    old, new = _node("driver"), _node("base_controller")
+    old_starter = ('// The driver node: your code goes here.\n#include "robot/driver_base.hpp"\n'
+                   "class Driver : public DriverBase\n{\n};\n")
+    new_starter = old_starter.replace("driver", "base_controller").replace("Driver", "BaseController")
+    mine = old_starter.replace("{\n", "{\n  // the driver's wheels: mine\n  Driver * self_ = this;\n") + (
+        'int main() { ros::init(argc, argv, "driver"); auto my_driver = robot::Driver(); }\n')
+    code = renames.renamed_code(mine, old, new, old_starter, new_starter)
+    assert code == (
+        '// The base_controller node: your code goes here.\n#include "robot/base_controller_base.hpp"\n'
+        "class BaseController : public BaseControllerBase\n{\n  // the driver's wheels: mine\n"
+        "  BaseController * self_ = this;\n};\n"
+        'int main() { ros::init(argc, argv, "base_controller"); auto my_driver = robot::BaseController(); }\n')
+
+
+def test_build_and_launch_lines_naming_a_renamed_node_name_the_new_one():
+    text = ("add_executable(${PROJECT_NAME}_driver src/driver.cpp)\n"
+            "target_link_libraries(driver tf2_ros::tf2_ros)  # mine\n"
+            "# the driver's own flags\n"
+            "install(PROGRAMS robot/driver.py DESTINATION lib/${PROJECT_NAME} RENAME driver)\n"
+            "            'drive = robot.driver:main',\n"
+            '  <node pkg="robot" exec="driver" name="driver">\n'
+            '    <param from="$(find-pkg-share robot)/config/driver.yaml"/>\n'
+            "add_executable(my_driver src/my_driver.cpp) robot_driver driver_base driver2\n")
+    renamed = renames.renamed_lines(text, {"driver": "planner"}, "robot")
+    assert renamed == (
+        "add_executable(${PROJECT_NAME}_planner src/planner.cpp)\n"
+        "target_link_libraries(planner tf2_ros::tf2_ros)  # mine\n"
+        "# the driver's own flags\n"
+        "install(PROGRAMS robot/planner.py DESTINATION lib/${PROJECT_NAME} RENAME planner)\n"
+        "            'drive = robot.planner:main',\n"
+        '  <node pkg="robot" exec="planner" name="planner">\n'
+        '    <param from="$(find-pkg-share robot)/config/planner.yaml"/>\n'
+        "add_executable(my_driver src/my_driver.cpp) robot_planner driver_base driver2\n")
+    assert renames.still_named(renamed, {"driver": "planner"}, "robot") == []
+    assert renames.still_named(text, {"driver": "planner"}, "robot")[:2] == [(1, "driver"), (2, "driver")]
+
+
+def test_a_rename_must_name_a_node_of_the_package_being_updated():
+    previous = {"nodes": [{"name": "driver"}, {"name": "monitor"}]}
+
+    def error(nodes, before=previous, update=True):
+        return renames.rename_error(before, {"nodes": nodes}, update=update)
+
+    assert error([{"name": "planner", "renamed_from": "driver"}, "monitor"]) is None
+    assert error(["driver", "monitor"]) is None
+    assert "'drvier' is no node of the package" in error([{"name": "planner", "renamed_from": "drvier"}])
+    assert "still in the nodes" in error([{"name": "planner", "renamed_from": "driver"}, "driver"])
+    assert "both renamed from 'driver'" in error([{"name": "a", "renamed_from": "driver"},
+                                                 {"name": "b", "renamed_from": "driver"}])
+    assert "is for `copier update`" in error([{"name": "a", "renamed_from": "driver"}], before=None, update=False)
+    assert error([{"name": "a", "renamed_from": "driver"}], before=None, update=True) is None  # a scratch render
+
+
+def test_the_answers_file_records_the_new_name_only_with_its_checksum():
+    answers = {"_commit": "v1", "package_name": "robot",
+               "nodes": [{"name": "planner", "language": "cpp", "renamed_from": "driver"}]}
+    text = (f"# Written by Copier\n{resolve.CHECKSUM_LINE}{resolve.checksum(answers)}\n"
+            + resolve.answers_yaml(answers))
+    consumed = renames.without_renames(text)
+    assert "renamed_from" not in consumed and consumed.startswith("# Written by Copier\n")
+    assert resolve.edited_by_hand(consumed) is False
+    assert renames.without_renames(consumed) is None
+
+
+def test_a_renamed_node_without_a_language_keeps_the_one_it_had():
+    previous = {"build_type": "ament_cmake", "nodes": [{"name": "driver", "language": "python"}]}
+    nodes = [{"name": "planner", "renamed_from": "driver"}]
+    resolve.keep_languages(nodes, {**previous, "build_type": "ament_python"})
+    assert nodes[0]["language"] == "python"
