@@ -2,9 +2,10 @@
 
 A node's user file is the user's once edited: the update never rewrites it. When the
 answers change what that code builds on (the message type of a callback it overrides, a
-C++ callback it overrides that is gone, lifecycle, component or diagnostics switched, the license its
-header states), the update says so in its summary and writes the new starter beside the
-file, under a name no build tool or linter picks up, for the user to compare and port.
+callback it overrides that is gone: a build error in C++, dead code in Python; lifecycle,
+component or diagnostics switched, the license its header states), the update says so in
+its summary and writes the new starter beside the file, under a name no build tool or
+linter picks up, for the user to compare and port.
 """
 
 from __future__ import annotations
@@ -47,9 +48,12 @@ def reasons(old: Package, new: Package, name: str, code: str, was: str | None = 
         if not used:
             continue
         changed = now.get(key)
-        if changed is None and after.is_cpp:  # `override` of nothing no longer compiles; in Python it is dead code
+        if changed is None and after.is_cpp:  # `override` of nothing no longer compiles
             found.append(f"the {endpoint.label} is no longer in the answers, and your code overrides "
                          f"{', '.join(used)}")
+        elif changed is None:  # Python builds on, and the code the user wrote never runs: said all the same
+            found.append(f"the {endpoint.label} is no longer in the answers: your {', '.join(used)} is never "
+                         "called (move what it did, or delete it)")
         elif changed is not None and getattr(endpoint, "type", None) != getattr(changed, "type", None):
             found.append(f"the {endpoint.label} is {changed.type} now, not {endpoint.type}: "
                          f"port {', '.join(used)}")
