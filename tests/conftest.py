@@ -54,6 +54,18 @@ def pytest_configure(config):
     config.addinivalue_line("markers", "update: copier update flows and merge-safety scenarios")
 
 
+def pytest_terminal_summary(terminalreporter):
+    """The merge-safety figure (tests/test_merge_safety.py records one tally per update)."""
+    tallies = [value for reports in terminalreporter.stats.values() for report in reports
+               if getattr(report, "when", None) == "call"
+               for key, value in getattr(report, "user_properties", ()) if key == "merge_safety"]
+    if tallies:
+        terminalreporter.write_sep("-", "merge safety")
+        terminalreporter.write_line(
+            f"{len(tallies)} updates: {sum(t['lost'] for t in tallies)} user lines lost through copier update; "
+            f"{sum(t['broken'] for t in tallies)} updates exited 0 with a package that does not parse or build")
+
+
 @pytest.fixture(scope="session")
 def template_dir(tmp_path_factory) -> Path:
     """The template as it is in this working tree, committed in a private repo."""

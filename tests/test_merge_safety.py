@@ -79,6 +79,33 @@ class Edits:
         return found
 
 
+# ─── The suite's figure ───────────────────────────────────────────────────────
+# Every scenario counts the user's lines the update lost and whether it exited 0 with a
+# package that colcon or catkin cannot read; conftest.py prints the sums after the run
+# ("merge safety: ..."): both must be 0.
+
+FIGURE = "merge_safety"
+
+
+@pytest.fixture
+def figure(record_property):
+    """figure(result, project, user_lines): records one update's tally (before the test's asserts)."""
+    def count(result, project: Path, user_lines: list[tuple[str, list[str]]]) -> None:
+        lost = 0
+        for path, lines in user_lines:
+            present = set((project / path).read_text().split("\n")) if (project / path).is_file() else set()
+            lost += sum(1 for line in lines if line.strip() and line not in present)
+        broken = result.returncode == 0 and bool(broken_packages(project))
+        record_property(FIGURE, {"lost": lost, "broken": int(broken)})
+    return count
+
+
+def written(edits: Edits) -> list[tuple[str, list[str]]]:
+    """The user's lines of a set of edits: each block, and each whole file the user owns."""
+    return [(path, lines) for _, path, lines in edits.blocks] + [
+        (path, text.split("\n")) for path, text in edits.owned.items()]
+
+
 # ─── The edits of a lived-in package ──────────────────────────────────────────
 
 EDITED_NODES = ("driver", "monitor")  # user files edited; `logger` is the "other" node
@@ -317,13 +344,14 @@ def apply_change(project: Path, flavor: Flavor, change: Change):
 
 @pytest.mark.parametrize("change_name", CHANGES)
 @pytest.mark.parametrize("flavor_name", FLAVORS)
-def test_user_lines_survive(project, flavor_name, change_name):
+def test_user_lines_survive(project, figure, flavor_name, change_name):
     flavor = Flavor(flavor_name)
     change = CHANGES[change_name]
     destination = project(flavor_name, OLD_VERSION if change.nodes is None else NEW_VERSION)
     edits = lived_in(destination, flavor)
 
     result = apply_change(destination, flavor, change)
+    figure(result, destination, written(edits))
 
     problems = edits.problems()
     conflicts = conflicted_files(destination)
@@ -403,7 +431,7 @@ CONFLICTS = {
 
 
 @pytest.mark.parametrize("case", CONFLICTS)
-def test_edit_inside_a_managed_block_conflicts_loudly(project, case):
+def test_edit_inside_a_managed_block_conflicts_loudly(project, figure, case):
     conflict = CONFLICTS[case]
     flavor = Flavor(conflict.flavor)
     destination = project(conflict.flavor)
@@ -412,6 +440,7 @@ def test_edit_inside_a_managed_block_conflicts_loudly(project, case):
     commit_all(destination, "an edit inside a managed block")
 
     result = run_update(destination, {"nodes": conflict.nodes(flavor, flavor.answers["nodes"])})
+    figure(result, destination, [(path, user_lines)])
 
     assert result.returncode == 1, f"expected exit code 1 for a conflict in {path}\n{result}"
     assert path in conflicts_of(result.output), f"{path} is not named as a conflict\n{result}"
@@ -514,7 +543,7 @@ DROPPED = {
 
 
 @pytest.mark.parametrize("case", DROPPED)
-def test_an_edited_file_the_answers_no_longer_make_is_kept_and_named(project, case):
+def test_an_edited_file_the_answers_no_longer_make_is_kept_and_named(project, figure, case):
     dropped = DROPPED[case]
     flavor = Flavor(dropped.flavor)
     destination = project(dropped.flavor)
@@ -524,6 +553,7 @@ def test_an_edited_file_the_answers_no_longer_make_is_kept_and_named(project, ca
     commit_all(destination, "my edits")
 
     result = run_update(destination, dropped.answers(flavor))
+    figure(result, destination, list(edits.items()))
 
     assert result.returncode != 0, f"the update exited 0 although it dropped files the user edited\n{result}"
     kept = kept_of(result.output)
@@ -588,7 +618,7 @@ DECLARED = {
 
 
 @pytest.mark.parametrize("case", DECLARED)
-def test_a_dependency_the_user_declared_is_never_declared_twice(project, case):
+def test_a_dependency_the_user_declared_is_never_declared_twice(project, figure, case):
     declared = DECLARED[case]
     flavor = Flavor(declared.flavor)
     destination = project(declared.flavor)
@@ -604,6 +634,7 @@ def test_a_dependency_the_user_declared_is_never_declared_twice(project, case):
 
     result = run_update(destination, {"nodes": nodes, **({"interfaces": declared.interfaces}
                                                            if declared.interfaces else {})})
+    figure(result, destination, written(edits))
 
     assert result.returncode == 0 and not conflicted_files(destination), f"{conflict_excerpts(destination)}{result}"
     assert edits.problems() == []
@@ -633,7 +664,7 @@ USES_NAV_MSGS = {
 
 
 @pytest.mark.parametrize("flavor_name", FLAVORS)
-def test_a_dependency_the_users_code_still_uses_is_not_dropped_silently(project, flavor_name):
+def test_a_dependency_the_users_code_still_uses_is_not_dropped_silently(project, figure, flavor_name):
     flavor = Flavor(flavor_name)
     destination = project(flavor_name)
     anchor, line = USES_NAV_MSGS[flavor_name]
@@ -644,6 +675,7 @@ def test_a_dependency_the_users_code_still_uses_is_not_dropped_silently(project,
     find_node(nodes, "driver")["subscribers"] = ["odom:geometry_msgs/msg/PoseStamped"]
 
     result = run_update(destination, {"nodes": nodes})
+    figure(result, destination, written(edits))
 
     assert edits.problems() == []
     still = "nav_msgs" in {d.name for d in (lambda p: p.build_depends + p.exec_depends)(
@@ -673,13 +705,14 @@ def config_change(flavor: Flavor) -> list[dict]:
 
 
 @pytest.mark.parametrize("flavor_name", FLAVORS)
-def test_a_config_merge_keeps_the_users_text_whatever_the_conflict_mode(project, flavor_name):
+def test_a_config_merge_keeps_the_users_text_whatever_the_conflict_mode(project, figure, flavor_name):
     flavor = Flavor(flavor_name)
     outcomes = {}
     for mode in ("inline", "rej"):
         destination = project(flavor_name, name=mode)
         edits = tuned_with_comments(destination, flavor)
         result = run_update(destination, {"nodes": config_change(flavor)}, extra_args=("--conflict", mode))
+        figure(result, destination, written(edits))
         assert result.returncode == 0 and not conflicted_files(destination), (
             f"--conflict {mode}: {conflict_excerpts(destination)}\n{result}")
         assert edits.problems() == [], f"--conflict {mode}\n{result}"
@@ -725,14 +758,15 @@ SWITCHES = {
 
 
 @pytest.mark.parametrize("case", SWITCHES)
-def test_a_switch_of_ros_generation_is_refused_before_anything_is_written(project, case):
+def test_a_switch_of_ros_generation_is_refused_before_anything_is_written(project, figure, case):
     flavor_name, change = SWITCHES[case]
     flavor = Flavor(flavor_name)
     destination = project(flavor_name)
-    lived_in(destination, flavor)
+    edits = lived_in(destination, flavor)
     head = git("rev-parse", "HEAD", cwd=destination).stdout
 
     result = run_update(destination, {**change, "nodes": with_languages(flavor, flavor.answers["nodes"])})
+    figure(result, destination, written(edits))
 
     assert result.returncode != 0, f"the update went ahead\n{result}"
     refusals = [line for line in result.output.splitlines() if line.startswith("rna-template: ")]
@@ -821,7 +855,7 @@ DRIFTS = {
 
 
 @pytest.mark.parametrize("case", DRIFTS)
-def test_an_edited_user_file_is_told_what_to_follow_with_the_new_starter_beside_it(project, case):
+def test_an_edited_user_file_is_told_what_to_follow_with_the_new_starter_beside_it(project, figure, case):
     flavor_name, answers, why = DRIFTS[case]
     flavor = Flavor(flavor_name)
     destination = project(flavor_name)
@@ -829,6 +863,7 @@ def test_an_edited_user_file_is_told_what_to_follow_with_the_new_starter_beside_
     path = flavor.user_file("driver")
 
     result = run_update(destination, answers(flavor))
+    figure(result, destination, written(edits))
 
     assert result.returncode == 1, f"the update did not stop for the user to port {path}\n{result}"
     to_port = to_port_of(result.output)
@@ -873,7 +908,7 @@ def renamed_text(line: str) -> str:
 
 
 @pytest.mark.parametrize("flavor_name", FLAVORS)
-def test_a_renamed_node_carries_the_users_file_values_launch_entry_and_build_lines(project, flavor_name):
+def test_a_renamed_node_carries_the_users_file_values_launch_entry_and_build_lines(project, figure, flavor_name):
     flavor = Flavor(flavor_name)
     destination = project(flavor_name)
     edits = lived_in(destination, flavor)
@@ -886,12 +921,12 @@ def test_a_renamed_node_carries_the_users_file_values_launch_entry_and_build_lin
 
     result = run_update(destination, renamed_driver(flavor))
 
-    assert result.returncode == 0 and not conflicted_files(destination), f"{conflict_excerpts(destination)}{result}"
     moved = {old_file: new_file, flavor.config_file("driver"): flavor.config_file(RENAMED)}
-    for label, where, lines in edits.blocks:
-        where = moved.get(where, where)
-        if where in (flavor.build_file, flavor.launch_file):
-            lines = [renamed_text(line) for line in lines]
+    carried = [(label, moved.get(where, where), [renamed_text(line) for line in lines]
+                if where in (flavor.build_file, flavor.launch_file) else lines) for label, where, lines in edits.blocks]
+    figure(result, destination, [(where, lines) for _, where, lines in carried])
+    assert result.returncode == 0 and not conflicted_files(destination), f"{conflict_excerpts(destination)}{result}"
+    for label, where, lines in carried:
         assert missing_block(destination / where, lines) is None, f"[{label}] {where}\n{result}"
     assert not (destination / old_file).exists() and not (destination / flavor.config_file("driver")).exists()
     code = (destination / new_file).read_text()
