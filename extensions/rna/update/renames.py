@@ -59,9 +59,10 @@ def rename_error(previous: Mapping | None, answers: Mapping, update: bool = True
                 "being updated); a new package has no node to rename")
     before = {str(node.get("name") if isinstance(node, Mapping) else node) for node in previous.get("nodes") or []}
     now = {str(node.get("name") if isinstance(node, Mapping) else node) for node in answers.get("nodes") or []}
+    written = renames(previous)  # Copier writes the new answers file before it renders the rest
     seen: dict[str, str] = {}
     for new, old in wanted.items():
-        if old == new:
+        if old == new or written.get(new) == old:
             continue
         if old not in before:
             return f"node '{new}': {KEY} '{old}' is no node of the package ({', '.join(sorted(before))})"
