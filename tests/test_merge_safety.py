@@ -955,3 +955,46 @@ def test_a_rename_naming_no_node_of_the_package_is_refused(project):
     assert result.returncode != 0 and "renamed_from 'drvier'" in result.output, result
     assert git("status", "--porcelain", "--untracked-files=all", cwd=destination).stdout == "", result
     assert git("rev-parse", "HEAD", cwd=destination).stdout == head
+
+
+# The package renamed (package_name): its folder, Python package, headers' folder and
+# launch file follow, and so do the user's files and every line of theirs that names it.
+
+NEW_PACKAGE = "rover"
+
+
+def package_renamed(path: str) -> str:
+    return "/".join(NEW_PACKAGE if part == PACKAGE else part.replace(f"{PACKAGE}.launch", f"{NEW_PACKAGE}.launch")
+                    for part in path.split("/"))
+
+
+def package_renamed_line(line: str) -> str:
+    if line.lstrip().startswith(("#", "<!--", "//")):
+        return line
+    return re.sub(rf"(?<![A-Za-z0-9_]){PACKAGE}(?![A-Za-z0-9_])", NEW_PACKAGE, line)
+
+
+@pytest.mark.parametrize("flavor_name", FLAVORS)
+def test_a_renamed_package_carries_the_users_files_and_lines(project, figure, flavor_name):
+    flavor = Flavor(flavor_name)
+    destination = project(flavor_name)
+    edits = lived_in(destination, flavor)
+
+    result = run_update(destination, {"package_name": NEW_PACKAGE,
+                                      "nodes": with_languages(flavor, flavor.answers["nodes"])})
+
+    carried = [(label, package_renamed(where), [package_renamed_line(line) for line in lines])
+               for label, where, lines in edits.blocks]
+    figure(result, destination, [(where, lines) for _, where, lines in carried])
+    assert result.returncode == 0 and not conflicted_files(destination), f"{conflict_excerpts(destination)}{result}"
+    for label, where, lines in carried:
+        assert missing_block(destination / where, lines) is None, f"[{label}] {where}\n{result}"
+    assert not (destination / PACKAGE).exists(), sorted(p.name for p in (destination / PACKAGE).rglob("*"))
+    assert f"<name>{NEW_PACKAGE}</name>" in (destination / NEW_PACKAGE / "package.xml").read_text()
+    if flavor.name != "ament_python":
+        assert f"project({NEW_PACKAGE})" in (destination / NEW_PACKAGE / "CMakeLists.txt").read_text()
+    for path in edits.owned:
+        code = (destination / package_renamed(path)).read_text()
+        assert not re.search(rf"^(?!\s*(#|//)).*\b{PACKAGE}\b", code, re.M), code
+    assert f"{PACKAGE}/ -> {NEW_PACKAGE}/" in result.output, result
+    assert broken_packages(destination) == [], result
