@@ -64,8 +64,10 @@ def main(answers_file: str, project_root: Path | None = None, template: Path = H
         new_answers = renames.without_keys(new_answers)  # the renames are this update's, not answers
         new = Render(render(str(template), new_answers["_commit"], new_answers, Path(scratch, "new")))
         packages = (package_of(old_answers, report), package_of(new_answers, report))
-        handled = renames.carry_renamed_nodes(project, old, new, packages, renamed, report) \
-            if None not in packages else set()
+        handled = set()
+        if None not in packages:
+            handled |= renames.carry_renamed_package(project, old, new, packages, report)
+            handled |= renames.carry_renamed_nodes(project, old, new, packages, renamed, report)
         protect.keep_edited_files(project, old, new, packages, report, skip=handled)
         if None not in packages:
             user_files = set(packages[0].user_files) | set(packages[1].user_files)

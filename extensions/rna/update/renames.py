@@ -251,3 +251,91 @@ def _rename_in_build_and_launch_files(project, old, new, package: Package, pairs
                                 f"{', '.join(pairs[name] for name in sorted(pairs))}.")
         handled.add(path)
     return handled
+
+
+# --- the package renamed
+
+CODE_SUFFIXES = {".py": "#", ".cfg": "#", ".txt": "#", ".cmake": "#", ".yaml": "#", ".yml": "#",
+                 ".cpp": "//", ".cc": "//", ".cxx": "//", ".hpp": "//", ".h": "//", ".hh": "//", ".hxx": "//",
+                 ".xml": "<!--", ".launch": "<!--"}
+
+
+def _package_names(old: Package, new: Package) -> dict[str, str]:
+    """Old name -> new name of the package, and of its interfaces package."""
+    names = {old.name: new.name}
+    if old.interfaces_package and new.interfaces_package:
+        names[old.interfaces_package] = new.interfaces_package
+    return names
+
+
+def package_path(path: str, names: Mapping[str, str]) -> str:
+    """Where a file of the old package goes: each folder or file named after the package renamed."""
+    parts = []
+    for part in path.split("/"):
+        for old, new in sorted(names.items(), key=lambda item: -len(item[0])):
+            if part == old or part.startswith(f"{old}."):
+                part = new + part[len(old):]
+                break
+        parts.append(part)
+    return "/".join(parts)
+
+
+def package_renamed_text(text: str, names: Mapping[str, str], suffix: str) -> str:
+    """A file's text with each word naming the package renamed, outside comment lines."""
+    comment = CODE_SUFFIXES.get(suffix)
+    if comment is None:
+        return text
+    alternatives = "|".join(re.escape(old) for old in sorted(names, key=len, reverse=True))
+    pattern = re.compile(rf"(?<![A-Za-z0-9_])({alternatives})(?![A-Za-z0-9_])")
+    lines = text.split("\n")
+    return "\n".join(line if line.lstrip().startswith(comment) else pattern.sub(lambda m: names[m[1]], line)
+                     for line in lines)
+
+
+def _suffix(path: str) -> str:
+    name = posixpath.basename(path)
+    return ".txt" if name == "CMakeLists.txt" else posixpath.splitext(name)[1]
+
+
+def carry_renamed_package(project: Project, old: Render, new: Render, packages: tuple[Package, Package],
+                          report: Report) -> set[str]:
+    """The user's files of a renamed package moved to the new folders, the lines naming it renamed and merged."""
+    old_package, new_package = packages
+    if old_package.name == new_package.name or old_package.target != "package":
+        return set()
+    names = _package_names(old_package, new_package)
+    folders = tuple(f"{name}/" for name in names)
+    handled: set[str] = set()
+    for path in sorted(project.committed_files):
+        if not path.startswith(folders):
+            continue
+        target = package_path(path, names)
+        mine, generated, fresh = project.committed(path), old.text(path), new.text(target)
+        if generated is not None and mine == generated:
+            continue  # untouched: Copier made the new one, or no longer makes it
+        if generated is not None and fresh is None:
+            continue  # edited, and the new answers do not make it: kept and named (protect.py)
+        suffix = _suffix(path)
+        ours = package_renamed_text(mine, names, suffix)
+        if generated is None:
+            text, conflicted = ours, False  # the user's own file
+            if fresh is not None and fresh != ours:
+                text, conflicted = merge.merge3(ours, "", fresh)
+        else:
+            text, conflicted = merge.merge3(ours, package_renamed_text(generated, names, suffix), fresh)
+        project.restore(path, to=target)  # with its mode
+        project.write(target, text)
+        project.remove(path)
+        if not conflicted:
+            project.resolve_in_index(target)
+        handled |= {path, target}
+    for old_name, new_name in names.items():
+        if any(path.startswith(f"{old_name}/") for path in handled):
+            report.renamed.append((f"{old_name}/", f"{new_name}/"))
+    if handled:
+        report.notes.append(
+            f"The package is {new_package.name} now: your files moved with it and your lines naming "
+            f"{' and '.join(names)} name {' and '.join(names.values())} (comment lines left as written). "
+            f"Rename it where this project does not reach: other packages' package.xml and find_package(), "
+            f"your scripts and `ros2 launch`/`roslaunch` commands, and rebuild the workspace from clean.")
+    return handled
