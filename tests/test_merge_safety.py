@@ -92,9 +92,9 @@ def figure(record_property):
     """figure(result, project, user_lines): records one update's tally (before the test's asserts)."""
     def count(result, project: Path, user_lines: list[tuple[str, list[str]]]) -> None:
         lost = 0
-        for path, lines in user_lines:
-            present = set((project / path).read_text().split("\n")) if (project / path).is_file() else set()
-            lost += sum(1 for line in lines if line.strip() and line not in present)
+        for path, lines in user_lines:  # a line of an edit may be part of a line (a value replaced)
+            text = (project / path).read_text() if (project / path).is_file() else ""
+            lost += sum(1 for line in lines if line.strip() and line not in text)
         broken = result.returncode == 0 and bool(broken_packages(project))
         record_property(FIGURE, {"lost": lost, "broken": int(broken)})
     return count
