@@ -103,6 +103,8 @@ class Project:
             target.unlink()
         for parent in target.relative_to(self.root).parents:
             folder = self.root / parent
+            if not folder.is_dir():
+                continue  # gone already (Copier removed what it emptied)
             if folder == self.root or any(folder.iterdir()):
                 break
             folder.rmdir()
