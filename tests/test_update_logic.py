@@ -319,3 +319,20 @@ def test_a_renamed_node_without_a_language_keeps_the_one_it_had():
     nodes = [{"name": "planner", "renamed_from": "driver"}]
     resolve.keep_languages(nodes, {**previous, "build_type": "ament_python"})
     assert nodes[0]["language"] == "python"
+
+
+def test_a_renamed_packages_paths_and_words_follow_it():
+    names = {"robot": "rover", "robot_interfaces": "rover_interfaces"}
+    assert renames.package_path("robot/robot/driver.py", names) == "rover/rover/driver.py"
+    assert renames.package_path("robot/include/robot/driver_base.hpp", names) == "rover/include/rover/driver_base.hpp"
+    assert renames.package_path("robot/launch/robot.launch.xml", names) == "rover/launch/rover.launch.xml"
+    assert renames.package_path("robot_interfaces/msg/Target.msg", names) == "rover_interfaces/msg/Target.msg"
+    assert renames.package_path("robot/robot_tools/x.py", names) == "rover/robot_tools/x.py"
+    code = ('#include "robot/driver_base.hpp"\n// the robot drives\nnamespace robot\n{\n'
+            "auto t = robot_interfaces::msg::Target();  // robot\n}  // namespace robot\nint robot_count = 0;\n")
+    assert renames.package_renamed_text(code, names, ".cpp") == (
+        '#include "rover/driver_base.hpp"\n// the robot drives\nnamespace rover\n{\n'
+        "auto t = rover_interfaces::msg::Target();  // rover\n}  // namespace rover\nint robot_count = 0;\n")
+    assert renames.package_renamed_text("# the robot\nfrom robot.helpers import clamp\n", names, ".py") == (
+        "# the robot\nfrom rover.helpers import clamp\n")
+    assert renames.package_renamed_text("robot", names, ".png") == "robot"

@@ -18,6 +18,7 @@ from (`renamed_from: driver`; the edit_nodes dialog writes it) makes the update 
 from __future__ import annotations
 
 import difflib
+import os
 import posixpath
 import re
 from collections.abc import Mapping
@@ -297,6 +298,17 @@ def _suffix(path: str) -> str:
     return ".txt" if name == "CMakeLists.txt" else posixpath.splitext(name)[1]
 
 
+def _move(project: Project, path: str, target: str) -> bool:
+    """Move a file as it is (bytes and mode), unless the target is taken; whether it moved."""
+    source, destination = project.root / path, project.root / target
+    if not source.is_file() or destination.exists():
+        return False
+    destination.parent.mkdir(parents=True, exist_ok=True)
+    os.replace(source, destination)
+    project.remove(path)  # the folders it leaves empty
+    return True
+
+
 def carry_renamed_package(project: Project, old: Render, new: Render, packages: tuple[Package, Package],
                           report: Report) -> set[str]:
     """The user's files of a renamed package moved to the new folders, the lines naming it renamed and merged."""
@@ -310,15 +322,19 @@ def carry_renamed_package(project: Project, old: Render, new: Render, packages: 
         if not path.startswith(folders):
             continue
         target = package_path(path, names)
-        mine, generated, fresh = project.committed(path), old.text(path), new.text(target)
+        generated, fresh, suffix = old.text(path), new.text(target), _suffix(path)
+        if generated is None and suffix not in CODE_SUFFIXES:
+            if _move(project, path, target):  # the user's own file, as it is (maps, meshes, notes...)
+                handled |= {path, target}
+            continue
+        mine = project.committed(path)
         if generated is not None and mine == generated:
             continue  # untouched: Copier made the new one, or no longer makes it
         if generated is not None and fresh is None:
             continue  # edited, and the new answers do not make it: kept and named (protect.py)
-        suffix = _suffix(path)
         ours = package_renamed_text(mine, names, suffix)
-        if generated is None:
-            text, conflicted = ours, False  # the user's own file
+        if generated is None:  # the user's own file: renamed where it names the package
+            text, conflicted = ours, False
             if fresh is not None and fresh != ours:
                 text, conflicted = merge.merge3(ours, "", fresh)
         else:
@@ -326,6 +342,8 @@ def carry_renamed_package(project: Project, old: Render, new: Render, packages: 
         project.restore(path, to=target)  # with its mode
         project.write(target, text)
         project.remove(path)
+        if (project.root / f"{path}.rej").exists():
+            project.remove(f"{path}.rej")
         if not conflicted:
             project.resolve_in_index(target)
         handled |= {path, target}
