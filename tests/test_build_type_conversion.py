@@ -39,24 +39,24 @@ def test_a_package_converted_between_build_types_keeps_the_users_code_and_builds
     project = generate_project(template_dir, workspace / "src" / "robot_project",
                                {"package_name": "robot", "build_type": before, "nodes": NODES})
     package = project / "robot"
-    lines = {
-        "robot/robot/driver.py": append_after(package / "robot" / "driver.py", "Received a message on chatter",
-                                              "        self.last = clamp(len(msg.data))  # mine", occurrence=0),
-        "robot/robot/helpers.py": write_new_file(package / "robot" / "helpers.py",
-                                                 '"""Helpers (mine)."""\n\n\ndef clamp(value):\n'
-                                                 '    return min(value, 10)\n\n\ndef main():\n    print(clamp(3))\n'),
-        "robot/config/driver.yaml": replace_text(package / "config" / "driver.yaml", "gain: 1.0", "gain: 1.8"),
-        f"robot/{build_file}": append_after(package / build_file, anchor, line),
-    }
-    lines["robot/robot/driver.py"] += append_after(package / "robot" / "driver.py", "import rclpy",
-                                                   "from robot.helpers import clamp", occurrence=0)
+    lines = [
+        ("robot/robot/driver.py", append_after(package / "robot" / "driver.py", "self.count += 1",
+                                               "        self.last = clamp(len(msg.data))  # mine", occurrence=0)),
+        ("robot/robot/driver.py", append_after(package / "robot" / "driver.py", "import rclpy",
+                                               "from robot.helpers import clamp", occurrence=0)),
+        ("robot/robot/helpers.py", write_new_file(package / "robot" / "helpers.py",
+                                                  '"""Helpers (mine)."""\n\n\ndef clamp(value):\n'
+                                                  '    return min(value, 10)\n\n\ndef main():\n    print(clamp(3))\n')),
+        ("robot/config/driver.yaml", replace_text(package / "config" / "driver.yaml", "gain: 1.0", "gain: 1.8")),
+        (f"robot/{build_file}", append_after(package / build_file, anchor, line)),
+    ]
     commit_all(project, "my code")
 
     result = run_update(project, {"build_type": after, "nodes": NODES}, vcs_ref="HEAD")
 
     assert result.returncode == 1, f"the old build file is the user's to port: the update must say so\n{result}"
     assert f"robot/{build_file}" in kept_of(result.output), result
-    for path, written in lines.items():
+    for path, written in lines:
         assert missing_block(project / path, written) is None, f"{path}\n{result}"
     env = ros2.env(ros2_support.pick_domain_id())
     ros2.colcon_build(workspace, env, "--cmake-args", "-DBUILD_TESTING=OFF")
