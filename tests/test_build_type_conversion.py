@@ -9,9 +9,14 @@ user's node and module installed.
 
 from __future__ import annotations
 
+import sys
+
 import pytest
-from support import ros2 as ros2_support
-from support.template_repo import (
+
+if "support.template_repo" not in sys.modules:  # its asserts explain themselves too
+    pytest.register_assert_rewrite("support.template_repo")
+from support import ros2 as ros2_support  # noqa: E402
+from support.template_repo import (  # noqa: E402
     append_after, commit_all, generate_project, kept_of, missing_block, replace_text, run_update, write_new_file,
 )
 
