@@ -26,7 +26,7 @@ from support.packages import dependency_names  # noqa: E402
 from support.template_repo import (  # noqa: E402
     FLAVORS, NEW_VERSION, OLD_VERSION, PACKAGE, Flavor, answers_of, append_after, commit_all, conflict_excerpts,
     conflicted_files, find_node, generate_project, git, kept_of, managed_lines, missing_block, replace_text, run_update,
-    summary_of, tree_differences, unmanaged_lines, user_answers,
+    summary_of, to_port_of, tree_differences, unmanaged_lines, user_answers,
 )
 
 pytest_plugins = ("support.template_repo",)
@@ -500,14 +500,15 @@ def test_add_an_interface(project, current_template, tmp_path, case):
     imports_old_type = "std_srvs" in (destination / monitor_file).read_text()
     result = run_update(destination, {"interfaces": NEW_INTERFACES, "interfaces_location": location,
                                       "nodes": nodes})
+    # The user's monitor still overrides on_reset_request, whose service is gone (dead code
+    # in Python): the update names the file to port and fails.
+    assert result.returncode == 1, result
+    assert "on_reset_request is never called" in to_port_of(result.output).get(monitor_file, ""), result
+    assert not conflicted_files(destination), conflict_excerpts(destination)
     if imports_old_type:
-        # The user's monitor still uses the Trigger service it no longer serves: the update
-        # must say so and fail, since std_srvs leaves the package's dependencies.
-        assert result.returncode == 1, result
+        # It still uses the Trigger service it no longer serves, and std_srvs leaves the
+        # package's dependencies: the update says that too.
         assert f"your {monitor_file} still imports it" in " ".join(result.stdout.split()), result
-        assert not conflicted_files(destination), conflict_excerpts(destination)
-    else:
-        assert_clean_update(result, destination)
 
     home = PACKAGE if location == "package" else f"{PACKAGE}_interfaces"
     assert definition_lines(destination / home / "msg" / "Target.msg") == ["float64 x", "float64 y"]
