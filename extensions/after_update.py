@@ -1,7 +1,8 @@
 """Run by `copier update` once it has finished (an unversioned "after" migration).
 
 Copier merges the template's changes into the project line by line; this script, given
-the answers file (the project is the current folder), finishes the job so that nothing
+the answers file (the project is the current folder) and the folder of the renders Copier
+made in this update (rna/update/kept.py; empty if none were kept), finishes the job so that nothing
 the user wrote is lost (rna/update/ says how, one module per job), then prints what the
 update did and what the user must do. It exits 1 when the user must act: a conflict, an
 edited file the answers no longer make, code that no longer matches its base class.
@@ -18,7 +19,7 @@ import yaml
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 from rna import Package, build_package  # noqa: E402 - the template's own package, next to this file
-from rna.update import blocks, config_merge, drift, merge, protect, renames  # noqa: E402
+from rna.update import blocks, config_merge, drift, kept, merge, protect, renames  # noqa: E402
 from rna.update.project import Project, Render, render  # noqa: E402
 from rna.update.summary import Report, changes, summary  # noqa: E402
 
@@ -51,7 +52,16 @@ def snapshot(project: Project, paths: set[str], committed: bool) -> dict[str, st
     return {path: text for path in paths if (text := read(path)) is not None}
 
 
-def main(answers_file: str, project_root: Path | None = None, template: Path = HERE.parent) -> int:
+def render_of(kind: str, answers: dict, renders: str | None, template: Path, scratch: str) -> Render:
+    """The render of one version: the one Copier made in this update if it was kept, else a new one."""
+    folder = kept.kept(renders, kind, answers)
+    if folder is None:
+        folder = render(str(template), answers["_commit"], answers, Path(scratch, kind))
+    return Render(folder)
+
+
+def main(answers_file: str, project_root: Path | None = None, template: Path = HERE.parent,
+         renders: str | None = None) -> int:
     project = Project(project_root or Path.cwd(), answers_file)
     old_answers = yaml.safe_load(project.committed(answers_file) or "{}") or {}
     new_answers = yaml.safe_load(project.text(answers_file) or "{}") or {}
@@ -60,9 +70,9 @@ def main(answers_file: str, project_root: Path | None = None, template: Path = H
         project.write(answers_file, consumed)
     report = Report()
     with tempfile.TemporaryDirectory(prefix="rna-update-") as scratch:
-        old = Render(render(str(template), old_answers["_commit"], old_answers, Path(scratch, "old")))
+        old = render_of("old", old_answers, renders, template, scratch)
         new_answers = renames.without_keys(new_answers)  # the renames are this update's, not answers
-        new = Render(render(str(template), new_answers["_commit"], new_answers, Path(scratch, "new")))
+        new = render_of("new", new_answers, renders, template, scratch)
         packages = (package_of(old_answers, report), package_of(new_answers, report))
         handled = set()
         if None not in packages:
@@ -82,6 +92,7 @@ def main(answers_file: str, project_root: Path | None = None, template: Path = H
         before = snapshot(project, project.committed_files, committed=True)
         after = snapshot(project, project.current_files(), committed=False)
         generated = {path: old.text(path) for path in before}
+    kept.discard(renders)
     versions = f"{old_answers.get('_commit')} -> {new_answers.get('_commit')}"
     moved = {path for pair in report.renamed for path in pair}
     print(summary(report, changes(before, after, generated, {answers_file} | moved), versions))
@@ -89,4 +100,4 @@ def main(answers_file: str, project_root: Path | None = None, template: Path = H
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv[1]))
+    sys.exit(main(sys.argv[1], renders=sys.argv[2] if len(sys.argv) > 2 else None))

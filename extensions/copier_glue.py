@@ -8,14 +8,18 @@ sys.modules first: each version's glue keeps the `rna` of its own checkout.
 
 from __future__ import annotations
 
+import atexit
 import functools
 import getpass
 import json
 import os
 import re
+import shutil
 import subprocess
 import sys
+import tempfile
 import textwrap
+import types
 from collections.abc import Mapping
 from pathlib import Path
 
@@ -50,6 +54,7 @@ try:
     import rna.lab
     import rna.layout
     import rna.names
+    import rna.update.kept
     import rna.update.refusals
     import rna.update.renames
     import rna.update.resolve
@@ -292,7 +297,8 @@ class RnaExtension(Extension):
             default_description=default_description, default_nodes=default_nodes,
             nodes_dialog=nodes_dialog, nodes_dialog_pending=nodes_dialog_pending,
             existing_package=existing_package, found_interfaces=found_interfaces, git_config=git_config,
-            in_git_work_tree=in_git_work_tree, lab=lab, docs_url=rna.lab.docs_url, login_name=getpass.getuser,
+            in_git_work_tree=in_git_work_tree, kept_renders=kept_renders, lab=lab, docs_url=rna.lab.docs_url,
+            login_name=getpass.getuser,
             package_files=package_files,
             python_init_file=python_init_file, user_files=user_files,
             # Line-breaking markers (rna/dialects/lines.py).
@@ -353,6 +359,8 @@ class PackageContext(ContextHook):
 
     def hook(self, context):
         _refuse_hand_edited_answers(context)
+        if str(context.get("_copier_phase")) == "tasks":
+            _keep_update_render(context)
         if str(context.get("_copier_phase")) != "render":
             _check_given_answers(context)
             return
@@ -466,14 +474,60 @@ def _check_given_answers(context) -> None:
 
 
 @functools.cache
-def _question_types(template: str) -> dict[str, str]:
-    """Each question's `type:` in the template's copier.yml (Copier casts given answers to it)."""
+def _copier_yml(template: str) -> dict:
+    """The template's copier.yml as written (libyaml's parser when PyYAML has it: it is read once a run)."""
     try:
-        questions = yaml.safe_load(Path(template, "copier.yml").read_text(encoding="utf-8"))
+        loaded = yaml.load(Path(template, "copier.yml").read_text(encoding="utf-8"),
+                           Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
     except (OSError, yaml.YAMLError):
         return {}
-    return {name: spec.get("type", "str") for name, spec in questions.items()
+    return loaded if isinstance(loaded, dict) else {}
+
+
+def _question_types(template: str) -> dict[str, str]:
+    """Each question's `type:` in the template's copier.yml (Copier casts given answers to it)."""
+    return {name: spec.get("type", "str") for name, spec in _copier_yml(template).items()
             if not name.startswith("_") and isinstance(spec, dict)}
+
+
+def _kept_renders_folder(create: bool = False) -> str:
+    """This process's folder of kept update renders (rna/update/kept.py), or "".
+
+    Copier loads the glue of each template version it renders afresh (the old version's
+    for the old render), so the folder is held by a module of its own in sys.modules.
+    """
+    holder = sys.modules.setdefault("rna_template_kept_renders", types.ModuleType("rna_template_kept_renders"))
+    if create and not getattr(holder, "folder", ""):
+        holder.folder = tempfile.mkdtemp(prefix="rna-update-renders-")
+        atexit.register(shutil.rmtree, holder.folder, True)
+    return getattr(holder, "folder", "")
+
+
+def kept_renders() -> str:
+    """The folder of this update's kept renders, for the after-update step's command line ("" if none)."""
+    return _kept_renders_folder()
+
+
+def _keep_update_render(context) -> None:
+    """Keep Copier's render of the old or the new version in an update, now that it is complete.
+
+    The `when` of the template's task is rendered once a render is complete, before the
+    task runs. A render excluding more than the template itself does (`--exclude`, or the
+    new version's exclusions in the old render) is not what the after-update step would
+    render: it is not kept.
+    """
+    conf = context.get("_copier_conf") or {}
+    if str(context.get("_copier_operation")) != "update" or conf.get("dst_path") is None:
+        return
+    destination = Path(conf["dst_path"])
+    kind = rna.update.kept.kind_of(destination)
+    if kind is None or not destination.is_dir():
+        return
+    own = _copier_yml(str(conf.get("src_path"))).get("_exclude") or []
+    if not set(conf.get("exclude") or ()) <= set(own):
+        return
+    recorded = rna.update.resolve.resolved(absolute_source(context.get("_copier_answers") or {}))
+    rna.update.kept.keep(Path(_kept_renders_folder(create=True)), kind, destination, answers_yaml(recorded))
 
 
 def _refuse_to_take_over(package, previous: Mapping, context) -> None:

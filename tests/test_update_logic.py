@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import shutil
+
 import rna
-from rna.update import blocks, config_merge, drift, merge, protect, refusals, renames, resolve
+import yaml
+from rna.update import blocks, config_merge, drift, kept, merge, protect, refusals, renames, resolve
 from support.generation import VALID
 
 ROS2_CONFIG = "/**:\n  ros__parameters:\n    # Gain\n    gain: {gain}\n\n    frame_id: {frame}\n\n"
@@ -336,3 +339,30 @@ def test_a_renamed_packages_paths_and_words_follow_it():
     assert renames.package_renamed_text("# the robot\nfrom robot.helpers import clamp\n", names, ".py") == (
         "# the robot\nfrom rover.helpers import clamp\n")
     assert renames.package_renamed_text("robot", names, ".png") == "robot"
+
+
+def test_a_kept_render_is_taken_only_for_exactly_the_answers_it_was_rendered_from(tmp_path):
+    answers = {"_commit": "v1.0.0", "_src_path": "/t", "package_name": "robot", "nodes": [{"name": "a"}]}
+    scratch = tmp_path / "copier._main.old_copy.x1" / "sub"
+    (scratch / "robot").mkdir(parents=True)
+    (scratch / "robot" / "package.xml").write_text("<package/>")
+    (scratch / ".git").mkdir()
+    assert kept.kind_of(scratch) == "old" and kept.kind_of(tmp_path / "project") is None
+    folder = tmp_path / "kept"
+    kept.keep(folder, "old", scratch, yaml.safe_dump(answers))
+    files = kept.kept(str(folder), "old", answers)
+    assert (files / "robot" / "package.xml").read_text() == "<package/>" and not (files / ".git").exists()
+    for other in ({**answers, "_commit": "v1.0.1"}, {**answers, "_src_path": "/u"}, {**answers, "nodes": []},
+                  {key: value for key, value in answers.items() if key != "_commit"}):
+        assert kept.kept(str(folder), "old", other) is None
+    assert kept.kept(str(folder), "new", answers) is None and kept.kept("", "old", answers) is None
+    # A later update's render replaces it; the hook runs more than once for one render.
+    (scratch / "robot" / "package.xml").write_text("<changed/>")
+    kept.keep(folder, "old", scratch, yaml.safe_dump(answers))
+    assert (files / "robot" / "package.xml").read_text() == "<package/>"
+    later = tmp_path / "copier._main.old_copy.x2"
+    shutil.copytree(scratch, later)
+    kept.keep(folder, "old", later, yaml.safe_dump(answers))
+    assert (files / "robot" / "package.xml").read_text() == "<changed/>"
+    kept.discard(str(folder))
+    assert kept.kept(str(folder), "old", answers) is None
