@@ -13,6 +13,7 @@ import functools
 import getpass
 import json
 import os
+import pickle
 import re
 import shutil
 import subprocess
@@ -290,6 +291,8 @@ class RnaExtension(Extension):
     def __init__(self, environment):
         super().__init__(environment)
         _compile_each_string_once(environment)
+        _compile_each_source_once_per_process(environment)
+        _ask_git_for_the_file_mode_once_per_render()
         environment.globals.update(
             answer_error=answer_error, answers_file_name=answers_file_name, base_files=base_files,
             builds_interfaces=rna.distros.BUILDS_INTERFACES, languages=rna.distros.languages,
@@ -351,13 +354,133 @@ def _compile_each_string_once(environment) -> None:
     environment.from_string = from_string
 
 
-_models: dict[str, object] = {}
+def _process_wide() -> types.ModuleType:
+    """State shared by every load of this glue in one process.
+
+    Copier loads the glue afresh for each Jinja environment it makes (one per render:
+    `copier update` makes three, the old version's glue for the old render; tests make
+    hundreds in one process), so module globals last one render; this lasts the process.
+    Its attributes are a contract between template versions: only ever add to them.
+    """
+    return sys.modules.setdefault("rna_template_process_wide", types.ModuleType("rna_template_process_wide"))
+
+
+def _compile_each_source_once_per_process(environment) -> None:
+    """Share Jinja's compiled code between the environments of one process.
+
+    Jinja compiles a template to a code object that takes its environment when it runs
+    (what its bytecode cache stores), so environments that compile alike share it: the
+    key is the source, its name and everything of the environment that the compiler
+    reads (syntax, options, extensions, the names of filters and tests, Jinja's version).
+    A hit is preprocessed all the same (Copier's yield tag resets its state there).
+    """
+    compile_source = environment.compile
+    codes: dict = {}
+
+    def compile(source, name=None, filename=None, raw=False, defer_init=False):  # noqa: A001 - Jinja's name
+        nonlocal codes
+        if raw or not isinstance(source, str):
+            return compile_source(source, name, filename, raw, defer_init)
+        if not codes:
+            shared = _process_wide().__dict__.setdefault("jinja_codes", {})
+            if len(shared) > 64:  # environments that compile differently: start again
+                shared.clear()
+            codes = shared.setdefault(_compiler_signature(environment), {})
+        key = (source, name, defer_init)
+        if key in codes:
+            environment.preprocess(source, name, filename)
+            return codes[key]
+        code = compile_source(source, name, filename, raw, defer_init)
+        if len(codes) < 20000:
+            codes[key] = code
+        return code
+
+    environment.compile = compile
+
+
+def _ask_git_for_the_file_mode_once_per_render() -> None:
+    """Copier asks git for `core.fileMode` after writing each file, a git process per file.
+
+    (Worker._sync_git_index_executable_bit: it changes git's index only when that setting
+    is false.) The answer is the same for every file one Copier worker writes, so it is
+    asked once per worker (its Jinja environment holds it), and the method runs as Copier
+    wrote it when the setting is false. With another Copier, where the method is not
+    there, nothing is changed.
+    """
+    try:
+        from copier._main import Worker
+    except ImportError:
+        return
+    sync = getattr(Worker, "_sync_git_index_executable_bit", None)
+    if sync is None or getattr(sync, "rna_once_per_worker", False):
+        return
+
+    @functools.wraps(sync)
+    def once_per_worker(self, dst_relpath, src_mode):
+        settings = self.jinja_env.__dict__.setdefault("rna_git_file_mode", {})
+        root = str(self.subproject.local_abspath)
+        if root not in settings:
+            settings[root] = _git_file_mode(root)
+        if settings[root] != "false":
+            return None
+        return sync(self, dst_relpath, src_mode)
+
+    once_per_worker.rna_once_per_worker = True
+    Worker._sync_git_index_executable_bit = once_per_worker
+
+
+def _git_file_mode(root: str) -> str | None:
+    """`git config --type=bool --get core.fileMode` in `root`, or None (no repository, unset, no git)."""
+    try:
+        result = subprocess.run(["git", "config", "--type=bool", "--get", "core.fileMode"], cwd=root,
+                                capture_output=True, text=True, check=False)
+    except OSError:
+        return None
+    return result.stdout.strip() if result.returncode == 0 else None
+
+
+def _compiler_signature(environment) -> str:
+    import jinja2
+
+    finalize = environment.finalize
+    return repr((
+        jinja2.__version__, type(environment).__module__, type(environment).__qualname__,
+        sorted(environment.extensions), environment.block_start_string, environment.block_end_string,
+        environment.variable_start_string, environment.variable_end_string, environment.comment_start_string,
+        environment.comment_end_string, environment.line_statement_prefix, environment.line_comment_prefix,
+        environment.trim_blocks, environment.lstrip_blocks, environment.newline_sequence,
+        environment.keep_trailing_newline, environment.optimized, environment.is_async,
+        environment.autoescape if isinstance(environment.autoescape, bool) else id(environment.autoescape),
+        None if finalize is None else (getattr(finalize, "__module__", None),
+                                       getattr(finalize, "__qualname__", id(finalize)),
+                                       getattr(finalize, "jinja_pass_arg", None)),
+        sorted(environment.filters), sorted(environment.tests), sorted(environment.policies.items(), key=repr)))
+
+
+_models: dict[bytes | str, object] = {}
+
+
+def _answers_key(values: list) -> bytes | str:
+    """A key that differs whenever the answers do (1, 1.0 and True too), made for every rendered file.
+
+    A pickle is several times faster to make than JSON, and a package with many nodes
+    renders many files; values that do not pickle are written as JSON instead.
+    """
+    try:
+        return pickle.dumps(values, protocol=5)
+    except (pickle.PicklingError, TypeError, AttributeError):
+        return json.dumps(values, sort_keys=True, default=str)
 
 
 class PackageContext(ContextHook):
     """Adds `package`, the checked model of all answers, to every template render."""
 
     def hook(self, context):
+        if (context.get("_copier_conf") or {}).get("answers_file") == "":
+            # Copier renders the answers file's name with this value in the middle of a
+            # render whose hook runs here too (every file, at its first look at the name):
+            # that name needs no package and no checks.
+            return
         _refuse_hand_edited_answers(context)
         if str(context.get("_copier_phase")) == "tasks":
             _keep_update_render(context)
@@ -375,8 +498,7 @@ class PackageContext(ContextHook):
         answers = {key: context.get(key) for key in (*rna.answers.QUESTIONS, "copyright_year")}
         # Whether it is an update is part of the key: Copier renders some names before it
         # says which answers file it updates, and the update's checks must still run.
-        key = json.dumps([answers, str((context.get('_copier_conf') or {}).get('dst_path')), previous is not None],
-                         sort_keys=True, default=str)
+        key = _answers_key([answers, str((context.get('_copier_conf') or {}).get('dst_path')), previous is not None])
         if key not in _models:
             try:
                 _models[key] = rna.build_package(answers)
@@ -449,7 +571,7 @@ def _answers_file(path: str, _mtime_ns: int, _size: int) -> dict | None:
     return previous if isinstance(previous, dict) else None
 
 
-_checked: set[str] = set()
+_checked: set[bytes | str] = set()
 
 
 def _check_given_answers(context) -> None:
@@ -463,7 +585,7 @@ def _check_given_answers(context) -> None:
     previous = _previous_answers(context) if "ros_distro" in given else None
     if previous is not None:  # before any other answer is read in the light of the new distro
         _refuse_switch(previous, given)
-    key = json.dumps(given, sort_keys=True, default=str)
+    key = _answers_key([given])
     if not given or key in _checked:
         return
     _checked.add(key)
@@ -493,14 +615,13 @@ def _question_types(template: str) -> dict[str, str]:
 def _kept_renders_folder(create: bool = False) -> str:
     """This process's folder of kept update renders (rna/update/kept.py), or "".
 
-    Copier loads the glue of each template version it renders afresh (the old version's
-    for the old render), so the folder is held by a module of its own in sys.modules.
+    Held process-wide (_process_wide): the old version's glue keeps the old render.
     """
-    holder = sys.modules.setdefault("rna_template_kept_renders", types.ModuleType("rna_template_kept_renders"))
-    if create and not getattr(holder, "folder", ""):
-        holder.folder = tempfile.mkdtemp(prefix="rna-update-renders-")
-        atexit.register(shutil.rmtree, holder.folder, True)
-    return getattr(holder, "folder", "")
+    holder = _process_wide()
+    if create and not getattr(holder, "kept_renders", ""):
+        holder.kept_renders = tempfile.mkdtemp(prefix="rna-update-renders-")
+        atexit.register(shutil.rmtree, holder.kept_renders, True)
+    return getattr(holder, "kept_renders", "")
 
 
 def kept_renders() -> str:
