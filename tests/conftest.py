@@ -48,6 +48,19 @@ settings.register_profile("ci", parent=settings.get_profile("fast"), max_example
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci" if os.environ.get("CI") == "true" else "fast"))
 
 
+# Session fixtures that build something large: with pytest-xdist each worker would build
+# its own, so the tests that use one are kept on one worker (`--dist loadgroup`, as .ci/run
+# runs; other tests go wherever a worker is free).
+SHARED_BUILDS = ("workspace", "catkin_ws", "example_packages")
+
+
+def pytest_collection_modifyitems(config, items):
+    for item in items:
+        used = [name for name in SHARED_BUILDS if name in getattr(item, "fixturenames", ())]
+        if used:
+            item.add_marker(pytest.mark.xdist_group(f"{item.path.stem}:{used[0]}"))
+
+
 def pytest_configure(config):
     config.addinivalue_line("markers", "ros: builds and runs generated ROS 2 packages (PyPI wheels)")
     config.addinivalue_line("markers", "ros1: builds and runs generated ROS 1 packages (Debian)")

@@ -17,11 +17,13 @@ Stdlib only; the pytest fixtures build on it.
 from __future__ import annotations
 
 import contextlib
+import fcntl
 import itertools
 import os
 import shutil
 import socket
 import subprocess
+import tempfile
 import time
 import warnings
 from collections.abc import Iterator, Mapping, Sequence
@@ -192,9 +194,15 @@ def ensure_environment(install: bool) -> Ros1Environment:
     missing = missing_packages()
     environment = Ros1Environment()
     if missing and install:
-        start = time.monotonic()
-        install_packages(missing)
-        environment.installed, environment.install_seconds = missing, time.monotonic() - start
+        # pytest-xdist workers set up at once: one installs, the others wait and find it done
+        # (apt-get fails at once on the lock another one holds).
+        with (Path(tempfile.gettempdir()) / "rna-template-ros1-install.lock").open("a") as lock:
+            fcntl.flock(lock, fcntl.LOCK_EX)
+            missing = missing_packages()
+            if missing:
+                start = time.monotonic()
+                install_packages(missing)
+                environment.installed, environment.install_seconds = missing, time.monotonic() - start
         missing = missing_packages()
     if missing:
         raise Ros1Unavailable(f"missing Debian packages: {' '.join(missing)}")

@@ -9,6 +9,7 @@ changed it.
 
 from __future__ import annotations
 
+import contextlib
 import subprocess
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -73,11 +74,36 @@ class Project:
 
     def committed(self, path: str) -> str | None:
         """The file as the user committed it, or None."""
+        if not self._committed:
+            self._committed.update(self._all_committed())
         if path not in self._committed:
             shown = git(self.root, "show", f"HEAD:{self.prefix}{path}", check=False) \
                 if path in self.committed_files else None
             self._committed[path] = shown.stdout if shown is not None and shown.returncode == 0 else None
         return self._committed[path]
+
+    def _all_committed(self) -> dict[str, str]:
+        """Every committed file that reads as UTF-8, from one git process (the update reads them all)."""
+        paths = sorted(path for path in self.committed_files if "\n" not in path)
+        listed = "".join(f"HEAD:{self.prefix}{path}\n" for path in paths).encode()
+        output = subprocess.run(["git", "cat-file", "--batch"], cwd=self.root, input=listed, capture_output=True,
+                                check=False).stdout
+        found, start = {}, 0
+        for path in paths:
+            end = output.find(b"\n", start)
+            if end < 0:  # git stopped short: the rest is read alone when asked
+                break
+            header = output[start:end].split()
+            start = end + 1
+            if len(header) != 3 or not header[2].isdigit():  # "<name> missing": no content follows
+                continue
+            size = int(header[2])
+            if header[1] == b"blob":
+                with contextlib.suppress(UnicodeDecodeError):  # read alone, as before, when asked
+                    # as `git show` read in text mode gives it: universal newlines
+                    found[path] = output[start:start + size].decode().replace("\r\n", "\n").replace("\r", "\n")
+            start += size + 1
+        return found
 
     def text(self, path: str) -> str | None:
         """The file as it is now."""
