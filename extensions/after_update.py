@@ -1,11 +1,12 @@
 """Run by `copier update` once it has finished (an unversioned "after" migration).
 
 Copier merges the template's changes into the project line by line; this script, given
-the answers file (the project is the current folder) and the folder of the renders Copier
-made in this update (rna/update/kept.py; empty if none were kept), finishes the job so that nothing
-the user wrote is lost (rna/update/ says how, one module per job), then prints what the
-update did and what the user must do. It exits 1 when the user must act: a conflict, an
-edited file the answers no longer make, code that no longer matches its base class.
+the answers file (the project is the current folder) and the renders of the old and the
+new version Copier made in this update (rna/update/kept.py; rendered again when they were
+not kept), finishes the job so that nothing the user wrote is lost (rna/update/ says how,
+one module per job), then prints what the update did and what the user must do. It exits
+1 when the user must act: a conflict, an edited file the answers no longer make, code
+that no longer matches its base class.
 """
 
 from __future__ import annotations
@@ -69,6 +70,7 @@ def main(answers_file: str, project_root: Path | None = None, template: Path = H
     if renamed and (consumed := renames.without_renames(project.text(answers_file))) is not None:
         project.write(answers_file, consumed)
     report = Report()
+    renders = renders or kept.pointed(template)
     with tempfile.TemporaryDirectory(prefix="rna-update-") as scratch:
         old = render_of("old", old_answers, renders, template, scratch)
         new_answers = renames.without_keys(new_answers)  # the renames are this update's, not answers
@@ -100,4 +102,4 @@ def main(answers_file: str, project_root: Path | None = None, template: Path = H
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv[1], renders=sys.argv[2] if len(sys.argv) > 2 else None))
+    sys.exit(main(sys.argv[1]))

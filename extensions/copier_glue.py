@@ -300,7 +300,7 @@ class RnaExtension(Extension):
             default_description=default_description, default_nodes=default_nodes,
             nodes_dialog=nodes_dialog, nodes_dialog_pending=nodes_dialog_pending,
             existing_package=existing_package, found_interfaces=found_interfaces, git_config=git_config,
-            in_git_work_tree=in_git_work_tree, kept_renders=kept_renders, lab=lab, docs_url=rna.lab.docs_url,
+            in_git_work_tree=in_git_work_tree, lab=lab, docs_url=rna.lab.docs_url,
             login_name=getpass.getuser,
             package_files=package_files,
             python_init_file=python_init_file, user_files=user_files,
@@ -484,6 +484,8 @@ class PackageContext(ContextHook):
         _refuse_hand_edited_answers(context)
         if str(context.get("_copier_phase")) == "tasks":
             _keep_update_render(context)
+        elif str(context.get("_copier_phase")) == "migrate" and str(context.get("_copier_operation")) == "update":
+            _point_to_kept_renders(context)
         if str(context.get("_copier_phase")) != "render":
             _check_given_answers(context)
             return
@@ -624,9 +626,13 @@ def _kept_renders_folder(create: bool = False) -> str:
     return getattr(holder, "kept_renders", "")
 
 
-def kept_renders() -> str:
-    """The folder of this update's kept renders, for the after-update step's command line ("" if none)."""
-    return _kept_renders_folder()
+def _point_to_kept_renders(context) -> None:
+    """Tell the after-update step, which runs from the template Copier renders its command
+    from, where this process keeps the renders (a file in that private clone)."""
+    folder = _kept_renders_folder()
+    source = (context.get("_copier_conf") or {}).get("src_path")
+    if folder and source is not None and Path(source).is_dir():
+        rna.update.kept.point(Path(source), folder)
 
 
 def _keep_update_render(context) -> None:

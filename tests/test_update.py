@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import os
 import re
+import shutil
 import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
@@ -160,6 +161,26 @@ def test_add_nodes(project, current_template, tmp_path, flavor_name):
 
     # An untouched package that grew equals a fresh copy made with the grown answers.
     assert fresh_copy_differences(destination, current_template, tmp_path) == []
+
+
+def test_a_package_inside_a_larger_repository_updates_like_one_on_its_own(base_project, tmp_path):
+    """A package in a workspace's repository (src/robot): the after-update step reads the
+    committed files by their path from the package, and keeps the user's line."""
+    flavor = Flavor("ament_cmake")
+    workspace = tmp_path / "ws"
+    destination = workspace / "src" / "robot"
+    shutil.copytree(base_project("ament_cmake"), destination, ignore=shutil.ignore_patterns(".git"))
+    git("init", "-q", "-b", "main", cwd=workspace)
+    commit_all(workspace, "a workspace")
+    mine = edit_user_file(destination, flavor, "driver")
+    commit_all(workspace)
+    nodes = flavor.answers["nodes"] + [node_answers(flavor, "planner", "cpp", **PLANNER)]
+
+    result = run_update(destination, {"nodes": nodes})
+    assert_clean_update(result, destination)
+
+    assert set(mine) <= set((destination / flavor.user_file("driver")).read_text().splitlines())
+    assert flavor.user_file("planner", "cpp") in summary_of(result.output)["added"], result
 
 
 # ─── What an update says ──────────────────────────────────────────────────────

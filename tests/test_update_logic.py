@@ -366,3 +366,9 @@ def test_a_kept_render_is_taken_only_for_exactly_the_answers_it_was_rendered_fro
     assert (files / "robot" / "package.xml").read_text() == "<changed/>"
     kept.discard(str(folder))
     assert kept.kept(str(folder), "old", answers) is None
+    # The after-update step finds the folder named in the template clone it runs from.
+    clone = tmp_path / "clone"
+    clone.mkdir()
+    assert kept.pointed(clone) is None
+    kept.point(clone, str(folder))
+    assert kept.pointed(clone) == str(folder)

@@ -12,7 +12,9 @@ answers that differ) and the step renders that version itself.
 
 Layout of the folder: `<kind>/files/` (the render) and `<kind>/answers.yml` (the answers
 file that render records, resolved as the template writes it), with `<kind>` `old` or
-`new`, and `<kind>/from` the scratch folder it was copied from.
+`new`, and `<kind>/from` the scratch folder it was copied from. The step finds the folder
+named in POINTER, in the template clone it runs from (Copier's private clone, written
+while Copier renders the step's command; the command line stays the plain one Copier shows).
 """
 
 from __future__ import annotations
@@ -25,6 +27,21 @@ import yaml
 # Copier's scratch folders in an update (copier/_main.py: TemporaryDirectory prefixes). Another
 # name in another Copier version only means nothing is kept.
 SCRATCH_PREFIXES = {"old": "copier._main.old_copy.", "new": "copier._main.new_copy."}
+
+
+POINTER = ".rna-kept-renders"
+
+
+def point(template: Path, folder: str) -> None:
+    (template / POINTER).write_text(folder)
+
+
+def pointed(template: Path) -> str | None:
+    """The folder of kept renders named in `template`, if any."""
+    try:
+        return (template / POINTER).read_text().strip() or None
+    except OSError:
+        return None
 
 
 def kind_of(destination: Path) -> str | None:

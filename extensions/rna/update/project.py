@@ -69,7 +69,9 @@ class Project:
 
     def __post_init__(self) -> None:
         self.prefix = git(self.root, "rev-parse", "--show-prefix").stdout.strip()
-        listed = git(self.root, "ls-tree", "-r", "-z", "--name-only", "HEAD", "--", ".").stdout
+        # --full-name: from a package inside a larger repository git lists paths from
+        # this folder otherwise, and the prefix is taken off below.
+        listed = git(self.root, "ls-tree", "-r", "-z", "--full-name", "--name-only", "HEAD", "--", ".").stdout
         self.committed_files = {name[len(self.prefix):] for name in listed.split("\0") if name}
 
     def committed(self, path: str) -> str | None:
@@ -137,7 +139,8 @@ class Project:
 
     def current_files(self) -> set[str]:
         """Files in the project now that git does not ignore."""
-        listed = git(self.root, "ls-files", "-z", "--cached", "--others", "--exclude-standard", "--", ".").stdout
+        listed = git(self.root, "ls-files", "-z", "--full-name", "--cached", "--others", "--exclude-standard",
+                     "--", ".").stdout
         names = {name[len(self.prefix):] for name in listed.split("\0") if name}
         return {name for name in names if (self.root / name).is_file()}
 
