@@ -292,7 +292,7 @@ class RnaExtension(Extension):
         super().__init__(environment)
         _compile_each_string_once(environment)
         _compile_each_source_once_per_process(environment)
-        _ask_git_for_the_file_mode_once_per_render()
+        _ask_git_for_the_file_mode_once_per_worker()
         environment.globals.update(
             answer_error=answer_error, answers_file_name=answers_file_name, base_files=base_files,
             builds_interfaces=rna.distros.BUILDS_INTERFACES, languages=rna.distros.languages,
@@ -398,7 +398,7 @@ def _compile_each_source_once_per_process(environment) -> None:
     environment.compile = compile
 
 
-def _ask_git_for_the_file_mode_once_per_render() -> None:
+def _ask_git_for_the_file_mode_once_per_worker() -> None:
     """Copier asks git for `core.fileMode` after writing each file, a git process per file.
 
     (Worker._sync_git_index_executable_bit: it changes git's index only when that setting
