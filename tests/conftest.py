@@ -51,7 +51,7 @@ settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci" if os.environ.ge
 # Session fixtures that build something large: with pytest-xdist each worker would build
 # its own, so the tests that use one are kept on one worker (`--dist loadgroup`, as .ci/run
 # runs; other tests go wherever a worker is free).
-SHARED_BUILDS = ("workspace", "catkin_ws", "example_packages")
+SHARED_BUILDS = ("workspaces", "catkin_ws", "example_packages")
 
 
 def pytest_collection_modifyitems(config, items):
