@@ -325,6 +325,7 @@ class RnaExtension(Extension):
             period_text=rna.wording.period_text,
             md_cell=rna.wording.markdown_cell,
             python_literal=rna.dialects.python.literal,
+            python_imports=rna.dialects.python.import_block,
             python_text=rna.dialects.python.text_literal,
             reflow=rna.dialects.lines.reflow,
             summary=rna.wording.node_summary,

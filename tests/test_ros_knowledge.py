@@ -106,6 +106,17 @@ def test_identifiers_come_from_the_names_users_give(topic, identifier):
     assert names.identifier_from_name(topic) == identifier
 
 
+@pytest.mark.parametrize(("name", "namespace", "resolved"), [
+    ("chatter", "/", "/chatter"),
+    ("/camera/depth/points", "/", "/camera/depth/points"),
+    ("~/state", "/", "/driver/state"),
+    ("~/state", "/robot", "/robot/driver/state"),
+    ("scan", "/robot/", "/robot/scan"),
+])
+def test_names_resolve_as_graph_queries_list_them(name, namespace, resolved):
+    assert names.fully_qualified(name, "driver", namespace) == resolved
+
+
 def test_members_get_a_suffix_once():
     assert names.with_suffix("cmd_vel", "publisher") == "cmd_vel_publisher"
     assert names.with_suffix("timer", "timer") == "timer"

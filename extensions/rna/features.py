@@ -135,3 +135,15 @@ def needs(node) -> list[Needs]:
 
 def packages(node) -> set[str]:
     return {package for need in needs(node) for package in need.packages}
+
+
+# What the generated tests use, per build type (rna.model adds gtest/pytest and the linters per
+# language). Python unit tests and launch tests drive rclpy; the launch test includes the package's
+# launch file through launch's any-format source and finds it with ament_index_python.
+TEST_PACKAGES = {
+    "ament_python": ("ament_copyright", "ament_flake8", "ament_index_python", "ament_pep257", "launch",
+                     "launch_testing", "python3-pytest", "rclpy"),
+    "ament_cmake": ("ament_index_python", "ament_lint_auto", "ament_lint_common", "launch", "launch_testing",
+                    "launch_testing_ament_cmake", "rclpy"),
+    "catkin": ("rosgraph", "rostest"),
+}

@@ -38,6 +38,12 @@ DEFAULT_LAUNCH_FORMAT = "xml"
 # What setup.py installs from launch/: every ROS 2 format above (and the users' own files in
 # them), as the ROS 2 documentation's packaging guide globs them.
 LAUNCH_GLOB = "launch/*launch.[pxy][yma]*"
+# The generated tests (ROS 1 has none per node: a rospy or roscpp node needs a master, so its
+# test is the package's rostest). "_node" keeps a node's test clear of the lint tests
+# (a node named flake8 or copyright).
+NODE_TESTS = {"cpp": "test/test_{name}_node.cpp", "python": "test/test_{name}_node.py"}
+LAUNCH_TESTS = {2: "test/test_{package}_launch.py", 1: "test/{package}.test"}
+GRAPH_TEST_SCRIPT = "test/test_{package}_graph.py"  # ROS 1: what the rostest file runs
 BASE_SUFFIX = "_base"
 
 # Files of a whole package, which a node added to an existing package never writes.
@@ -60,6 +66,18 @@ def config_file(name: str) -> str:
 def node_files(package: str, name: str, ros: int, language: str) -> tuple[str, ...]:
     """The files a node brings (its own and its base file, its config), within its package."""
     return (user_file(package, name, ros, language), base_file(package, name, ros, language), config_file(name))
+
+
+def node_test(name: str, language: str) -> str:
+    return NODE_TESTS[language].format(name=name)
+
+
+def launch_test(package: str, ros: int) -> str:
+    return LAUNCH_TESTS[ros].format(package=package)
+
+
+def graph_test_script(package: str) -> str:
+    return GRAPH_TEST_SCRIPT.format(package=package)
 
 
 def executable(name: str, ros: int, language: str) -> str:

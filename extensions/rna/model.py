@@ -219,6 +219,25 @@ class Node:
         return ("updater", "diagnostics_timer") if self.ros == 1 else ("updater",)
 
     @property
+    def test_file(self) -> str:
+        """The node's unit test (ROS 2), relative to the package folder."""
+        return layout.node_test(self.name, self.language)
+
+    def resolved(self, name: str, namespace: str = "/") -> str:
+        """A topic, service or action name of this node as the ROS graph lists it."""
+        return names.fully_qualified(name, self.name, namespace)
+
+    def graph_entries(self, endpoints, namespace: str = "/") -> tuple[tuple[str, str], ...]:
+        """(name, type) of each endpoint as graph queries list them: ('/chatter', 'std_msgs/msg/String')."""
+        return tuple((self.resolved(e.topic if isinstance(e, Topic) else e.name, namespace), e.type.full_name)
+                     for e in endpoints)
+
+    def goal_services(self, actions, namespace: str = "/") -> tuple[tuple[str, str], ...]:
+        """(name, type) of each action's goal service (ROS 2), which rclcpp's graph queries list."""
+        return tuple((f"{name}/_action/send_goal", f"{type_name}_SendGoal")
+                     for name, type_name in self.graph_entries(actions, namespace))
+
+    @property
     def endpoints(self) -> tuple:
         return (self.publishers + self.subscribers + self.service_servers + self.service_clients
                 + self.action_servers + self.action_clients + self.timers)
@@ -356,6 +375,25 @@ class Package:
     def launch_glob(self) -> str:
         """What setup.py installs from launch/: the launch file in any format, and the user's own."""
         return layout.LAUNCH_GLOB
+
+    @property
+    def launch_test_file(self) -> str:
+        """The test that starts the launch file and checks the graph: launch_testing, or a rostest file."""
+        return layout.launch_test(self.name, self.ros)
+
+    @property
+    def graph_test_script(self) -> str:
+        """ROS 1: the script the rostest file runs to check the graph."""
+        return layout.graph_test_script(self.name)
+
+    @property
+    def test_dependencies(self) -> tuple[str, ...]:
+        """package.xml's <test_depend>s: the generated tests' packages the nodes do not already need."""
+        wanted = set(features.TEST_PACKAGES[self.build_type])
+        if self.build_type == "ament_cmake":
+            wanted |= {"ament_cmake_gtest"} if self.cpp_nodes else set()
+            wanted |= {"ament_cmake_pytest"} if self.python_nodes else set()
+        return tuple(sorted(wanted - {dependency.name for dependency in self.dependencies}))
 
     @property
     def user_files(self) -> tuple[str, ...]:

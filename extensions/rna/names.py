@@ -293,3 +293,12 @@ def graph_name(name: str) -> str | None:
     """The name endpoints meet on when every node runs in one namespace (a launch file's),
     leading slash or not; None for a private (~) name, which meets no other node's."""
     return None if name.startswith("~") else name.lstrip("/")
+
+
+def fully_qualified(name: str, node: str, namespace: str = "/") -> str:
+    """The name ROS resolves a topic, service or action name to for a node in `namespace`,
+    as graph queries list it: 'chatter' -> '/chatter', '~/state' -> '/<node>/state'."""
+    base = namespace.rstrip("/")
+    if name.startswith("~"):
+        return f"{base}/{node}{name[1:]}"
+    return name if name.startswith("/") else f"{base}/{name}"

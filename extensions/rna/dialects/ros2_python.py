@@ -20,6 +20,14 @@ class Ros2Python(PythonDialect):
                              f"{self.base_module}:CtrlC",
                              *(self._import(t) for t in node.starter_interfaces)])
 
+    @property
+    def test_imports(self) -> str:
+        """Imports of the node's unit test (test/test_<node>_node.py)."""
+        node = self.node
+        actions = [f"rclpy.action:get_action_{role}_names_and_types_by_node"
+                   for role in ("client", "server") if getattr(node, f"action_{role}s")]
+        return import_block(["pytest", "rclpy", *actions, f"{node.package}.{node.name}:{node.class_name}"])
+
     @staticmethod
     def qos(qos) -> str:
         """The qos_profile argument when it is a depth or one of rclpy's preset profiles, else ''."""
