@@ -145,5 +145,6 @@ TEST_PACKAGES = {
                      "launch_testing", "python3-pytest", "rclpy"),
     "ament_cmake": ("ament_index_python", "ament_lint_auto", "ament_lint_common", "launch", "launch_testing",
                     "launch_testing_ament_cmake", "rclpy"),
-    "catkin": ("rosgraph", "rostest"),
+    "catkin": ("python3-catkin-lint", "python3-flake8", "python3-nose", "rosgraph", "rosservice",
+               "rostest"),
 }

@@ -42,8 +42,10 @@ LAUNCH_GLOB = "launch/*launch.[pxy][yma]*"
 # test is the package's rostest). "_node" keeps a node's test clear of the lint tests
 # (a node named flake8 or copyright).
 NODE_TESTS = {"cpp": "test/test_{name}_node.cpp", "python": "test/test_{name}_node.py"}
-LAUNCH_TESTS = {2: "test/test_{package}_launch.py", 1: "test/{package}.test"}
-GRAPH_TEST_SCRIPT = "test/test_{package}_graph.py"  # ROS 1: what the rostest file runs
+# ROS 1's names leave the package's name out: catkin_lint wants ${PROJECT_NAME} in CMakeLists.txt.
+LAUNCH_TESTS = {2: "test/test_{package}_launch.py", 1: "test/graph.test"}
+GRAPH_TEST_SCRIPT = "test/test_graph.py"  # ROS 1: what the rostest file runs
+LINT_TEST = "test/test_lint.py"  # ROS 1: catkin_lint, flake8 and cpplint (ROS 2 has ament's)
 BASE_SUFFIX = "_base"
 
 # Files of a whole package, which a node added to an existing package never writes.

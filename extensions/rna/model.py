@@ -232,6 +232,10 @@ class Node:
         return tuple((self.resolved(e.topic if isinstance(e, Topic) else e.name, namespace), e.type.full_name)
                      for e in endpoints)
 
+    def goal_topics(self, actions, namespace: str = "/") -> tuple[tuple[str, str], ...]:
+        """ROS 1: (name, type) of each action's goal topic, which actionlib's server subscribes to."""
+        return tuple((f"{name}/goal", f"{type_name}ActionGoal") for name, type_name in self.graph_entries(actions, namespace))
+
     def goal_services(self, actions, namespace: str = "/") -> tuple[tuple[str, str], ...]:
         """(name, type) of each action's goal service (ROS 2), which rclcpp's graph queries list."""
         return tuple((f"{name}/_action/send_goal", f"{type_name}_SendGoal")
