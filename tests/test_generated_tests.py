@@ -1,5 +1,16 @@
 """The tests a generated package brings run and pass, and fail when a node lacks what its answers give it.
 
+Fast tier: what cannot run here is checked statically. Each generated test names exactly the
+nodes, topics, services, actions and parameter defaults of the answers (read back from the
+test's own text: Python's literals, the C++ calls, the rostest XML), it includes the package's
+launch file by the name the package has, and the build files register every test inside
+if(BUILD_TESTING) / if(CATKIN_ENABLE_TESTING) with package.xml's test_depends.
+
+ros1 tier: `catkin_make run_tests` and `catkin_test_results` on generated catkin packages
+(C++ and Python nodes, topics, services, actions, custom interfaces): the rostest that
+starts the launch file and checks the graph with the master, and the lint tests (catkin_lint,
+flake8, cpplint) run by nose; inside a private network namespace.
+
 ros tier: `colcon test` and `colcon test-result --verbose` on generated ament_python and
 ament_cmake packages built with BUILD_TESTING on: each Python node's unit test, and the
 package's flake8 and pep257 tests. What has no wheel here is named in
@@ -11,17 +22,133 @@ stand-in), ament_lint_auto (a stand-in: the tier runs the ament linters itself) 
 
 from __future__ import annotations
 
+import ast
+import os
 import re
 import shutil
 import subprocess
+import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
+from catkin_pkg.package import parse_package
+from support import ros1 as ros1_support
 from support import ros2 as ros2_support
-from support.generation import example, generate
+from support.generation import VARIANTS, example, generate
+from support.packages import model_of, package_dir
+from support.tiers import unavailable
 
 STAND_INS = Path(__file__).parent / "support" / "stand_ins"
+
+
+def resolved(name: str, node: str) -> str:
+    """A name as the graph lists it for a node in the root namespace (written out here, not rna's)."""
+    return f"/{node}{name[1:]}" if name.startswith("~") else name if name.startswith("/") else f"/{name}"
+
+
+def entries(node, endpoints) -> list[tuple[str, str]]:
+    return [(resolved(getattr(e, "topic", None) or e.name, node.name), e.type.full_name) for e in endpoints]
+
+
+def literals(path: Path) -> dict:
+    """The module-level constants of a generated Python test, as Python reads them."""
+    found = {}
+    for statement in ast.parse(path.read_text()).body:
+        if isinstance(statement, ast.Assign) and isinstance(statement.targets[0], ast.Name):
+            found[statement.targets[0].id] = ast.literal_eval(statement.value)
+    return found
+
+
+def cpp_calls(text: str, function: str) -> list[tuple[str, ...]]:
+    """The string arguments of each call of `function` in generated C++ (literals cut by line
+    breaks joined again)."""
+    calls = []
+    for arguments in re.findall(rf"{function}\(([^;]*)\);", text):
+        joined = re.sub(r'"\s*"', "", arguments)
+        calls.append(tuple(re.findall(r'"((?:[^"\\]|\\.)*)"', joined)))
+    return calls
+
+
+def declared_test_depends(package: Path) -> set[str]:
+    manifest = parse_package(str(package / "package.xml"))
+    manifest.validate()
+    return {dependency.name for dependency in manifest.test_depends}
+
+
+def section_of(cmake: str, condition: str) -> str:
+    return cmake.split(f"if({condition})", 1)[1].split("endif()", 1)[0]
+
+
+@pytest.mark.parametrize("variant", sorted(set(VARIANTS) - {"ros1"}))
+def test_ros2_tests_name_what_the_answers_give(make_package, variant):
+    destination = make_package(example(VARIANTS[variant]))
+    model, package = model_of(destination), package_dir(destination)
+    for node in model.nodes:
+        test = package / "test" / f"test_{node.name}_node.{'py' if node.is_python else 'cpp'}"
+        kinds = {"PUBLISHERS": node.publishers, "SUBSCRIPTIONS": node.subscribers,
+                 "SERVICES": node.service_servers, "CLIENTS": node.service_clients,
+                 "ACTION_SERVERS": node.action_servers, "ACTION_CLIENTS": node.action_clients}
+        if node.is_python:
+            found = literals(test)
+            for variable, endpoints in kinds.items():
+                assert found.get(variable, []) == entries(node, endpoints), (test, variable)
+            assert found.get("PARAMETERS", []) == [(p.name, p.default) for p in node.parameters]
+            assert f"from {model.name}.{node.name} import {node.class_name}" in test.read_text()
+        else:
+            text = test.read_text()
+            goals = [(f"{name}/_action/send_goal", f"{type_name}_SendGoal")
+                     for name, type_name in entries(node, node.actions)]
+            listed = [pair for variable, endpoints in kinds.items() if "ACTION" not in variable
+                      for pair in entries(node, endpoints)] + goals
+            assert sorted(cpp_calls(text, "expect_listed")) == sorted(listed), test
+            assert [call[0] for call in cpp_calls(text, "expect_parameter<[^(]*>")] == [p.name for p in node.parameters]
+            assert f'#include "{model.name}/{node.name}_base.hpp"' in text
+    launch_test = package / "test" / f"test_{model.name}_launch.py"
+    found = literals(launch_test)
+    assert found["NODES"] == [f"/{node.name}" for node in model.nodes]
+    up = [node for node in model.nodes if not node.lifecycle or node.autostart]
+    assert found.get("PUBLISHERS", []) == [(n.name, *e) for n in up for e in entries(n, n.publishers)]
+    assert found.get("SERVICES", []) == [(n.name, *e) for n in up for e in entries(n, n.service_servers)]
+    # The launch file it includes is the package's, whatever its format.
+    named = [s.value for s in ast.walk(ast.parse(launch_test.read_text()))
+             if isinstance(s, ast.Constant) and isinstance(s.value, str) and s.value.startswith("launch/")]
+    assert named and all((package / name).is_file() for name in named), named
+
+    depends = declared_test_depends(package)
+    assert {"launch", "launch_testing", "ament_index_python"} <= depends
+    if model.build_type == "ament_cmake":
+        block = section_of((package / "CMakeLists.txt").read_text(), "BUILD_TESTING")
+        for node in model.cpp_nodes:
+            assert f"ament_add_gtest(test_{node.name}_node test/test_{node.name}_node.cpp)" in block
+        for node in model.python_nodes:
+            assert f"ament_add_pytest_test(test_{node.name}_node test/test_{node.name}_node.py)" in block
+        assert f"add_launch_test(test/test_{model.name}_launch.py)" in block
+        assert {"launch_testing_ament_cmake", "ament_lint_auto"} <= depends
+        assert ("ament_cmake_gtest" in depends) == bool(model.cpp_nodes)
+        assert ("ament_cmake_pytest" in depends) == bool(model.python_nodes)
+    else:
+        assert {"python3-pytest", "ament_flake8", "ament_pep257", "ament_copyright"} <= depends
+
+
+def test_ros1_tests_name_what_the_answers_give(make_package):
+    destination = make_package(example(VARIANTS["ros1"]))
+    model, package = model_of(destination), package_dir(destination)
+    rostest = ET.parse(package / "test" / "graph.test").getroot()
+    assert rostest.find("include").get("file") == f"$(find {model.name})/launch/{model.name}.launch"
+    script = package / "test" / rostest.find("test").get("type")
+    assert os.access(script, os.X_OK)
+    found = literals(script)
+    assert found["NODES"] == [f"/{node.name}" for node in model.nodes]
+    assert found["PUBLISHERS"] == [
+        (f"/{n.name}", *e) for n in model.nodes
+        for e in entries(n, n.publishers) + [(f"{name}/goal", f"{t}ActionGoal") for name, t in entries(n, n.action_clients)]]
+    assert found["SUBSCRIPTIONS"] == [
+        (f"/{n.name}", *e) for n in model.nodes
+        for e in entries(n, n.subscribers) + [(f"{name}/goal", f"{t}ActionGoal") for name, t in entries(n, n.action_servers)]]
+    block = section_of((package / "CMakeLists.txt").read_text(), "CATKIN_ENABLE_TESTING")
+    assert "add_rostest(test/graph.test)" in block and "catkin_add_nosetests(test/test_lint.py)" in block
+    assert {"rostest", "python3-nose", "python3-flake8", "python3-catkin-lint"} <= declared_test_depends(package)
 
 # Every kind of Python node (lifecycle too) in an ament_python package, Python nodes of an
 # ament_cmake package (ament_cmake_pytest), and parameters of every form.
@@ -49,12 +176,11 @@ class Results:
     output: str
 
 
-def mutate(package: Path) -> None:
-    """Break the talker's ROS interface the way a wrong edit of its base class would."""
-    base = package / MUTATED / "talker_base.py"
-    text = base.read_text()
-    assert "'chatter'" in text and "'rate', 20.0" in text, text
-    base.write_text(text.replace("'chatter'", "'chatter_elsewhere'").replace("'rate', 20.0", "'rate', 10.0"))
+def mutate(path: Path, old: str, new: str) -> None:
+    """Break a node's ROS interface the way a wrong edit of its base class would."""
+    text = path.read_text()
+    assert old in text, text
+    path.write_text(text.replace(old, new))
 
 
 @pytest.fixture(scope="module")
@@ -64,7 +190,9 @@ def colcon_tested(ros2, template_dir, tmp_path_factory) -> dict[str, Results]:
     for name, answers in PACKAGES.items():
         generate(template_dir, path / "src" / name, answers)
     generate(template_dir, path / "src" / MUTATED, example("every_python_node", package_name=MUTATED))
-    mutate(path / "src" / MUTATED / MUTATED)
+    base = path / "src" / MUTATED / MUTATED / MUTATED / "talker_base.py"
+    mutate(base, "'chatter'", "'chatter_elsewhere'")
+    mutate(base, "'rate', 20.0", "'rate', 10.0")
     for stand_in in STAND_INS.iterdir():
         shutil.copytree(stand_in, path / "src" / stand_in.name)
     env = ros2.env(ros2_support.pick_domain_id())
@@ -72,7 +200,7 @@ def colcon_tested(ros2, template_dir, tmp_path_factory) -> dict[str, Results]:
     colcon = str(ros2.venv / "bin" / "colcon")
     tested = subprocess.run([colcon, "test", "--base-paths", "src", "--event-handlers", "console_cohesion+",
                              "desktop_notification-", "--pytest-args", *PYTEST_ARGS],
-                            cwd=path, env=env, capture_output=True, text=True, timeout=900, check=False)
+                            cwd=path, env=env, capture_output=True, text=True, timeout=600, check=False)
     results = {}
     for name in [*PACKAGES, MUTATED]:
         shown = subprocess.run([colcon, "test-result", "--verbose", "--test-result-base", f"build/{name}"],
@@ -100,3 +228,61 @@ def test_generated_tests_fail_when_a_node_lacks_its_endpoint(colcon_tested):
     assert results.failures == 2, results.output[-6000:]
     assert "test_publishers" in results.output and "/chatter" in results.output
     assert "test_parameters" in results.output and "parameter rate" in results.output
+
+
+# Every node and endpoint kind in both languages, and custom interfaces in a package of their own.
+CATKIN_PACKAGES = {"robot_ros1": example("robot_ros1"), "tracker_ros1": example("tracker_ros1")}
+# The launch file's talker (C++) made to advertise another topic than its answers say.
+CATKIN_MUTATED = "mutated_bringup"
+
+
+@pytest.fixture(scope="module")
+def ros1():
+    try:
+        return ros1_support.ensure_environment(install=os.geteuid() == 0)
+    except ros1_support.Ros1Unavailable as error:
+        unavailable(f"ROS 1 from Debian's packages is not available: {error}")
+
+
+@pytest.fixture(scope="module")
+def catkin_tested(ros1, template_dir, tmp_path_factory) -> dict[str, Results]:
+    """The catkin packages generated, built, `catkin_make run_tests`; each package's results."""
+    path = tmp_path_factory.mktemp("catkin_tested_ws")
+    logs = tmp_path_factory.mktemp("catkin_tested_logs")
+    for name, answers in CATKIN_PACKAGES.items():
+        generate(template_dir, path / "src" / name, answers)
+    generate(template_dir, path / "src" / CATKIN_MUTATED, example("bringup_ros1", package_name=CATKIN_MUTATED))
+    mutate(path / "src" / CATKIN_MUTATED / CATKIN_MUTATED / "include" / CATKIN_MUTATED / "talker_base.h",
+           '"chatter"', '"chatter_elsewhere"')
+    env = ros1.env(ros1_support.free_port(), logs / "ros_home")
+    ros1.catkin_make(path, env)
+    env = ros1.workspace_env(path / "devel", env)
+    with ros1_support.netns_prefix() as prefix:  # rostest's own master stays private
+        tested = subprocess.run([*prefix, "catkin_make", "-C", str(path), "-j2",
+                                 f"-DPYTHON_EXECUTABLE={ros1_support.PYTHON}", "run_tests"],
+                                cwd=path, env=env, capture_output=True, text=True, timeout=900, check=False)
+    results = {}
+    for name in [*CATKIN_PACKAGES, CATKIN_MUTATED]:
+        folder = path / "build" / "test_results" / name
+        shown = subprocess.run(["catkin_test_results", "--verbose", str(folder)], cwd=path, env=env,
+                               capture_output=True, text=True, timeout=120, check=False)
+        found = SUMMARY.search(shown.stdout)
+        assert found, f"{name}: no summary\n{shown.stdout}{shown.stderr}\n{tested.stdout[-4000:]}"
+        results[name] = Results(*map(int, found.groups()), shown.stdout + tested.stdout)
+    return results
+
+
+@pytest.mark.ros1
+@pytest.mark.parametrize("package", list(CATKIN_PACKAGES))
+def test_generated_rostest_and_lint_tests_pass_under_catkin(catkin_tested, package):
+    results = catkin_tested[package]
+    assert (results.errors, results.failures) == (0, 0), results.output[-6000:]
+    # The graph test's checks, rostest's own test, and the three lint tests.
+    assert results.tests >= 6 and results.skipped == 0, results.output[-6000:]
+
+
+@pytest.mark.ros1
+def test_generated_rostest_fails_when_a_node_lacks_its_topic(catkin_tested):
+    results = catkin_tested[CATKIN_MUTATED]
+    assert results.failures >= 1, results.output[-6000:]
+    assert "/talker: no publisher of std_msgs/String on /chatter" in results.output, results.output[-6000:]

@@ -50,6 +50,8 @@ DEBIAN_PACKAGES = [
     "python3-rosmaster", "python3-roslaunch", "rosout", "rosbash", "rospack-tools",
     "python3-rosparam", "python3-rostopic", "python3-rosnode", "python3-rosservice",
     "python3-rostest", "librostest-dev", "catkin-lint",
+    # What the generated lint tests run (nose runs them).
+    "python3-nose", "python3-flake8", "cpplint",
     # actionlib.
     "libactionlib-dev", "python3-actionlib",
     "ros-actionlib-msgs", "libactionlib-msgs-dev", "python3-actionlib-msgs",
