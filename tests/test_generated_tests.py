@@ -85,7 +85,7 @@ def test_ros2_tests_name_what_the_answers_give(make_package, variant):
     destination = make_package(example(VARIANTS[variant]))
     model, package = model_of(destination), package_dir(destination)
     for node in model.nodes:
-        test = package / "test" / f"test_{node.name}_node.{'py' if node.is_python else 'cpp'}"
+        test = package / "test" / f"test_node_{node.name}.{'py' if node.is_python else 'cpp'}"
         kinds = {"PUBLISHERS": node.publishers, "SUBSCRIPTIONS": node.subscribers,
                  "SERVICES": node.service_servers, "CLIENTS": node.service_clients,
                  "ACTION_SERVERS": node.action_servers, "ACTION_CLIENTS": node.action_clients}
@@ -104,7 +104,7 @@ def test_ros2_tests_name_what_the_answers_give(make_package, variant):
             assert sorted(cpp_calls(text, "expect_listed")) == sorted(listed), test
             assert [call[0] for call in cpp_calls(text, "expect_parameter<[^(]*>")] == [p.name for p in node.parameters]
             assert f'#include "{model.name}/{node.name}_base.hpp"' in text
-    launch_test = package / "test" / f"test_{model.name}_launch.py"
+    launch_test = package / "test" / "test_launch.py"
     found = literals(launch_test)
     assert found["NODES"] == [f"/{node.name}" for node in model.nodes]
     up = [node for node in model.nodes if not node.lifecycle or node.autostart]
@@ -120,10 +120,10 @@ def test_ros2_tests_name_what_the_answers_give(make_package, variant):
     if model.build_type == "ament_cmake":
         block = section_of((package / "CMakeLists.txt").read_text(), "BUILD_TESTING")
         for node in model.cpp_nodes:
-            assert f"ament_add_gtest(test_{node.name}_node test/test_{node.name}_node.cpp)" in block
+            assert f"ament_add_gtest(test_node_{node.name} test/test_node_{node.name}.cpp)" in block
         for node in model.python_nodes:
-            assert f"ament_add_pytest_test(test_{node.name}_node test/test_{node.name}_node.py)" in block
-        assert f"add_launch_test(test/test_{model.name}_launch.py)" in block
+            assert f"ament_add_pytest_test(test_node_{node.name} test/test_node_{node.name}.py)" in block
+        assert "add_launch_test(test/test_launch.py)" in block
         assert {"launch_testing_ament_cmake", "ament_lint_auto"} <= depends
         assert ("ament_cmake_gtest" in depends) == bool(model.cpp_nodes)
         assert ("ament_cmake_pytest" in depends) == bool(model.python_nodes)
@@ -162,7 +162,7 @@ PACKAGES = {
 MUTATED = "mutated_robot"
 
 # No wheels: ament_copyright's test, and launch tests (launch_testing's pytest plugin).
-PYTEST_ARGS = ("--ignore-glob=*/test_copyright.py", "--ignore-glob=*_launch.py")
+PYTEST_ARGS = ("--ignore-glob=*/test_copyright.py", "--ignore-glob=*/test_launch.py")
 
 SUMMARY = re.compile(r"Summary: (\d+) tests, (\d+) errors, (\d+) failures, (\d+) skipped")
 

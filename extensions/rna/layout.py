@@ -39,13 +39,14 @@ DEFAULT_LAUNCH_FORMAT = "xml"
 # them), as the ROS 2 documentation's packaging guide globs them.
 LAUNCH_GLOB = "launch/*launch.[pxy][yma]*"
 # The generated tests (ROS 1 has none per node: a rospy or roscpp node needs a master, so its
-# test is the package's rostest). "_node" keeps a node's test clear of the lint tests
-# (a node named flake8 or copyright).
-NODE_TESTS = {"cpp": "test/test_{name}_node.cpp", "python": "test/test_{name}_node.py"}
-# ROS 1's names leave the package's name out: catkin_lint wants ${PROJECT_NAME} in CMakeLists.txt.
-LAUNCH_TESTS = {2: "test/test_{package}_launch.py", 1: "test/graph.test"}
+# test is the package's rostest). The names keep a node's test clear of the lint tests (a node
+# named flake8), and every test that starts ROS sorts after test_flake8.py: pytest runs an
+# ament_python package's files in that order, and flake8's worker processes, forked from a
+# process with DDS threads, can hang. ROS 1's names leave the package's name out: catkin_lint
+# wants ${PROJECT_NAME} in CMakeLists.txt.
+NODE_TESTS = {"cpp": "test/test_node_{name}.cpp", "python": "test/test_node_{name}.py"}
+LAUNCH_TESTS = {2: "test/test_launch.py", 1: "test/graph.test"}
 GRAPH_TEST_SCRIPT = "test/test_graph.py"  # ROS 1: what the rostest file runs
-LINT_TEST = "test/test_lint.py"  # ROS 1: catkin_lint, flake8 and cpplint (ROS 2 has ament's)
 BASE_SUFFIX = "_base"
 
 # Files of a whole package, which a node added to an existing package never writes.

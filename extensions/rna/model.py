@@ -223,6 +223,11 @@ class Node:
         """The node's unit test (ROS 2), relative to the package folder."""
         return layout.node_test(self.name, self.language)
 
+    @property
+    def test_target(self) -> str:
+        """The CMake test (and gtest executable) of the node's unit test: the file's stem."""
+        return self.test_file.rsplit("/", 1)[-1].rsplit(".", 1)[0]
+
     def resolved(self, name: str, namespace: str = "/") -> str:
         """A topic, service or action name of this node as the ROS graph lists it."""
         return names.fully_qualified(name, self.name, namespace)

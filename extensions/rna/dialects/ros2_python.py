@@ -22,7 +22,7 @@ class Ros2Python(PythonDialect):
 
     @property
     def test_imports(self) -> str:
-        """Imports of the node's unit test (test/test_<node>_node.py)."""
+        """Imports of the node's unit test (test/test_node_<node>.py)."""
         node = self.node
         actions = [f"rclpy.action:get_action_{role}_names_and_types_by_node"
                    for role in ("client", "server") if getattr(node, f"action_{role}s")]

@@ -52,7 +52,8 @@ def why_gone(path: str, old: Package | None, new: Package | None) -> str:
         return "the answers no longer make it"
     names = {node.name: node for node in new.nodes}
     for node in old.nodes:
-        if path in {_in(old, node.user_file), _in(old, node.base_file), _in(old, node.config_file)}:
+        if path in {_in(old, node.user_file), _in(old, node.base_file), _in(old, node.config_file),
+                    _in(old, node.test_file)}:
             if node.name not in names:
                 return f"its node '{node.name}' is gone from the answers"
             if names[node.name].language != node.language:
