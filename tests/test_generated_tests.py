@@ -140,12 +140,13 @@ def test_ros1_tests_name_what_the_answers_give(make_package):
     assert os.access(script, os.X_OK)
     found = literals(script)
     assert found["NODES"] == [f"/{node.name}" for node in model.nodes]
-    assert found["PUBLISHERS"] == [
-        (f"/{n.name}", *e) for n in model.nodes
-        for e in entries(n, n.publishers) + [(f"{name}/goal", f"{t}ActionGoal") for name, t in entries(n, n.action_clients)]]
-    assert found["SUBSCRIPTIONS"] == [
-        (f"/{n.name}", *e) for n in model.nodes
-        for e in entries(n, n.subscribers) + [(f"{name}/goal", f"{t}ActionGoal") for name, t in entries(n, n.action_servers)]]
+    def goals(node, actions):
+        return [(f"{name}/goal", f"{type_name}ActionGoal") for name, type_name in entries(node, actions)]
+
+    assert found["PUBLISHERS"] == [(f"/{n.name}", *e) for n in model.nodes
+                                   for e in entries(n, n.publishers) + goals(n, n.action_clients)]
+    assert found["SUBSCRIPTIONS"] == [(f"/{n.name}", *e) for n in model.nodes
+                                      for e in entries(n, n.subscribers) + goals(n, n.action_servers)]
     block = section_of((package / "CMakeLists.txt").read_text(), "CATKIN_ENABLE_TESTING")
     assert "add_rostest(test/graph.test)" in block and "catkin_add_nosetests(test/test_lint.py)" in block
     assert {"rostest", "python3-nose", "python3-flake8", "python3-catkin-lint"} <= declared_test_depends(package)

@@ -239,7 +239,8 @@ class Node:
 
     def goal_topics(self, actions, namespace: str = "/") -> tuple[tuple[str, str], ...]:
         """ROS 1: (name, type) of each action's goal topic, which actionlib's server subscribes to."""
-        return tuple((f"{name}/goal", f"{type_name}ActionGoal") for name, type_name in self.graph_entries(actions, namespace))
+        return tuple((f"{name}/goal", f"{type_name}ActionGoal")
+                     for name, type_name in self.graph_entries(actions, namespace))
 
     def goal_services(self, actions, namespace: str = "/") -> tuple[tuple[str, str], ...]:
         """(name, type) of each action's goal service (ROS 2), which rclcpp's graph queries list."""
