@@ -655,7 +655,8 @@ def _keep_update_render(context) -> None:
     if not set(conf.get("exclude") or ()) <= set(own):
         return
     recorded = rna.update.resolve.resolved(absolute_source(context.get("_copier_answers") or {}))
-    rna.update.kept.keep(Path(_kept_renders_folder(create=True)), kind, destination, answers_yaml(recorded))
+    rna.update.kept.keep(Path(_kept_renders_folder(create=True)), kind, destination,
+                         rna.update.resolve.answers_yaml(recorded))
 
 
 def _refuse_to_take_over(package, previous: Mapping, context) -> None:
