@@ -998,3 +998,24 @@ def test_a_renamed_package_carries_the_users_files_and_lines(project, figure, fl
         assert not re.search(rf"^(?!\s*(#|//)).*\b{PACKAGE}\b", code, re.M), code
     assert f"{PACKAGE}/ -> {NEW_PACKAGE}/" in result.output, result
     assert broken_packages(destination) == [], result
+
+
+@pytest.mark.parametrize("flavor_name", FLAVORS)
+def test_a_node_and_its_package_renamed_at_once_carry_the_users_file_and_build_lines(project, figure, flavor_name):
+    flavor = Flavor(flavor_name)
+    destination = project(flavor_name)
+    edits = lived_in(destination, flavor)
+    path, anchor, line = NAMES_THE_TARGET[flavor_name]
+    edits.after("a line naming the driver's target", path(flavor), anchor, line)
+    edits.commit()
+    new_file = package_renamed(flavor.user_file(RENAMED, flavor.language("driver")))
+
+    result = run_update(destination, {"package_name": NEW_PACKAGE, **renamed_driver(flavor)})
+
+    assert result.returncode == 0 and not conflicted_files(destination), f"{conflict_excerpts(destination)}{result}"
+    code = (destination / new_file).read_text()
+    assert "BaseControllerBase" in code, code
+    assert not re.search(rf"^(?!\s*(#|//)).*\b({PACKAGE}|driver_base|DriverBase|Driver)\b", code, re.M), code
+    build = (destination / package_renamed(flavor.build_file)).read_text()
+    assert package_renamed_line(renamed_text(line)) in build, build
+    assert broken_packages(destination) == [], result

@@ -177,21 +177,34 @@ def carry_renamed_nodes(project: Project, old: Render, new: Render, packages: tu
     handled: set[str] = set()
     if not pairs:
         return handled
+    # With the package renamed in the same update, its step has moved the build and launch
+    # files already, and the node's file must have the package's name changed too.
+    package_names = _package_names(old_package, new_package) if _package_renamed(packages) else {}
     for before, after in pairs.items():
         old_node, new_node = _node(old_package, before), _node(new_package, after)
-        handled |= _carry_user_file(project, old, new, packages, old_node, new_node, report)
+        handled |= _carry_user_file(project, old, new, packages, old_node, new_node, report, package_names)
         handled |= _carry_config(project, old, new, packages, old_node, new_node, report)
-    handled |= _rename_in_build_and_launch_files(project, old, new, new_package, pairs, report)
+    if package_names:
+        handled |= _rename_in_moved_files(project, old, packages, pairs, package_names, report)
+    else:
+        handled |= _rename_in_build_and_launch_files(project, old, new, new_package, pairs, report)
     return handled
 
 
-def _carry_user_file(project, old, new, packages, old_node: Node, new_node: Node, report: Report) -> set[str]:
+def _package_renamed(packages: tuple[Package, Package]) -> bool:
+    return packages[0].name != packages[1].name and packages[0].target == "package"
+
+
+def _carry_user_file(project, old, new, packages, old_node: Node, new_node: Node, report: Report,
+                     package_names: Mapping[str, str]) -> set[str]:
     source, target = _in(packages[0], old_node.user_file), _in(packages[1], new_node.user_file)
     if not edited(project, old, source):
         return set()  # the starter: the new one follows the template
     if old_node.language != new_node.language:
         return set()  # another language: kept and named (protect.py)
     text = renamed_code(project.committed(source), old_node, new_node, old.text(source), new.text(target))
+    if package_names:
+        text = package_renamed_text(text, package_names, _suffix(target))
     project.restore(source, to=target)  # with its mode: an executable script stays one
     project.write(target, text)
     project.remove(source)
@@ -251,6 +264,31 @@ def _rename_in_build_and_launch_files(project, old, new, package: Package, pairs
             report.notes.append(f"{path}: your lines naming {', '.join(sorted(pairs))} now name "
                                 f"{', '.join(pairs[name] for name in sorted(pairs))}.")
         handled.add(path)
+    return handled
+
+
+def _rename_in_moved_files(project, old, packages: tuple[Package, Package], pairs: Mapping[str, str],
+                           package_names: Mapping[str, str], report: Report) -> set[str]:
+    """The user's lines naming a renamed node, in the build and launch files the package's rename moved."""
+    handled = set()
+    for path in sorted(project.committed_files):
+        target = package_path(path, package_names)
+        if not path.startswith(f"{packages[0].dir}/") or not BUILD_AND_LAUNCH.search(target):
+            continue
+        mine, current = project.committed(path), project.text(target)
+        if current is None or mine == old.text(path):
+            continue  # untouched: the new render already names the new node
+        if old.text(path) is None:  # the user's own file: said, not rewritten
+            for number, name in still_named(current, pairs, packages[1].name):
+                report.problems.append(f"{target}:{number} still names the node '{name}', renamed "
+                                       f"'{pairs[name]}': rename it there.")
+            continue
+        text = renamed_lines(current, pairs, packages[1].name)
+        if text != current:
+            project.write(target, text)
+            report.notes.append(f"{target}: your lines naming {', '.join(sorted(pairs))} now name "
+                                f"{', '.join(pairs[name] for name in sorted(pairs))}.")
+        handled.add(target)
     return handled
 
 
