@@ -19,6 +19,9 @@ def test_a_run_stuck_creating_an_entity_in_the_middleware_is_told_apart():
                                     "/ws/install/pkg/talker_base.py:__init__"))
     assert stuck_in_middleware(dump(f"{SITE}/rclpy/context.py:_logging_fini", f"{SITE}/rclpy/context.py:_cleanup"))
     assert stuck_in_middleware(dump(f"{SITE}/rclpy/node.py:destroy_node", f"{SITE}/rclpy/context.py:_cleanup"))
+    # CI, 2026-11-26: a publisher's teardown inside try_shutdown (rclpy/publisher.py destroy).
+    assert stuck_in_middleware(dump(f"{SITE}/rclpy/publisher.py:destroy", f"{SITE}/rclpy/node.py:destroy_publisher",
+                                    f"{SITE}/rclpy/context.py:_cleanup"))
 
 
 def test_a_run_stuck_anywhere_else_is_a_failure():

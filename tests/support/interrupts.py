@@ -32,7 +32,7 @@ UNCLEAN_OUTPUT = re.compile(r"Traceback|Error")
 # any other hang is a failure.
 FAULTHANDLER_ENV = {"PYTHONFAULTHANDLER": "1"}
 MIDDLEWARE_CALLS = ("create_publisher", "create_subscription", "create_service", "create_client",
-                    "_logging_fini", "destroy_node")
+                    "_logging_fini", "destroy_node", "destroy")  # destroy: an entity's own teardown
 INNERMOST_FRAME = re.compile(r"^(?:Current thread|Thread) 0x[0-9a-f]+ \(most recent call first\):\n"
                              r"  File \"(?P<file>[^\"]+)\", line \d+ in (?P<function>\w+)", re.MULTILINE)
 LATEST = 1.5  # seconds: by then the runs are exchanging messages, calls and goals
