@@ -29,7 +29,9 @@ EXPECTED_DEPENDENCIES = {
     "lifecycle": {"depend": {"geometry_msgs", "lifecycle_msgs", "nav_msgs", "rcl_interfaces", "rclcpp",
                              "rclcpp_action", "rclcpp_lifecycle", "sensor_msgs", "std_msgs", "std_srvs", "test_msgs"},
                   "exec_depend": {"action_msgs", "rclpy", "ros2launch"}},
-    "component": {"depend": {"lifecycle_msgs", "rclcpp", "rclcpp_components", "rclcpp_lifecycle", "sensor_msgs"},
+    # rcl_interfaces: the lifecycle component's autostart parameter has a descriptor.
+    "component": {"depend": {"lifecycle_msgs", "rcl_interfaces", "rclcpp", "rclcpp_components", "rclcpp_lifecycle",
+                             "sensor_msgs"},
                   "exec_depend": {"ros2launch"}},
     "ros1": {"depend": {"actionlib", "actionlib_msgs", "geometry_msgs", "nav_msgs", "roscpp", "rospy",
                         "sensor_msgs", "std_msgs", "std_srvs"}, "exec_depend": set()},

@@ -30,6 +30,7 @@ def node_features(node) -> frozenset[str]:
         "lifecycle": node.lifecycle,
         "plain": not node.lifecycle,
         "component": node.component,
+        "starts_itself": node.starts_itself,
         "diagnostics": node.diagnostics,
         "executable": not node.component,
         "timers": bool(node.timers),
@@ -58,6 +59,8 @@ ROS2_CPP = {
                        ("lifecycle_msgs/msg/state.hpp", "rclcpp_lifecycle/lifecycle_node.hpp",
                         "rclcpp_lifecycle/lifecycle_publisher.hpp")),
     "component": Needs(("rclcpp_components",), user=("rclcpp_components/register_node_macro.hpp",)),
+    # The autostart parameter (read-only) and the timer that starts the node once it spins.
+    "starts_itself": Needs(("rcl_interfaces",), ("<chrono>", "rcl_interfaces/msg/parameter_descriptor.hpp")),
     # The base class owns the Updater; the user's status task sets a DiagnosticStatus level.
     "diagnostics": Needs(("diagnostic_msgs", "diagnostic_updater"),
                          ("diagnostic_updater/diagnostic_status_wrapper.hpp",

@@ -22,7 +22,10 @@ from .parameters import Parameter
 from .qos import Qos
 
 # Members the generated base classes declare besides the endpoints'.
-BASE_MEMBERS = ("node_handle", "private_node_handle", "start_goal_thread", "goal_threads", "goal_threads_mutex")
+BASE_MEMBERS = ("node_handle", "private_node_handle", "start_goal_thread", "goal_threads", "goal_threads_mutex",
+                "autostart_timer")
+# The parameter a lifecycle component declares to configure and activate itself once loaded.
+AUTOSTART_PARAMETER = "autostart"
 # The method of a node with diagnostics that fills in its status (the updater's task).
 DIAGNOSTICS_TASK = "on_diagnostics"
 
@@ -210,6 +213,12 @@ class Node:
     @property
     def executable(self) -> str:
         return layout.executable(self.name, self.ros, self.language)
+
+    @property
+    def starts_itself(self) -> bool:
+        """A lifecycle component: loaded into a container, no launch_ros action drives its
+        transitions, so its AUTOSTART_PARAMETER has it configure and activate itself."""
+        return self.lifecycle and self.component
 
     @property
     def diagnostics_members(self) -> tuple[str, ...]:

@@ -30,6 +30,8 @@ FRONTEND = {
     "param": {"from", "name", "value"},
 }
 BOOLEAN_ATTRIBUTES = {"autostart"}
+# Read with any type (launch_ros's <param value>): a YAML value keeps its own; XML's text is read as YAML.
+TYPED_ATTRIBUTES = {"value"}
 # Each name a Python launch file may use: the module that exports it, and its keyword arguments.
 _PY_NODE = {"package", "executable", "name", "namespace", "output", "parameters", "condition", "remappings",
             "arguments", "ros_arguments"}
@@ -77,8 +79,9 @@ def _true(value) -> bool:
     return value is True or str(value).lower() == "true"
 
 
-def _read_entities(entities) -> dict:
-    """(tag, attributes, children by tag) of each top-level action, in order, as one description."""
+def _read_entities(entities, typed: bool) -> dict:
+    """(tag, attributes, children by tag) of each top-level action, in order, as one description;
+    typed: the values are YAML's own (a YAML file), not text (an XML file)."""
     args, nodes, containers = {}, [], []
     for tag, attributes, children in entities:
         _check_attributes(tag, attributes)
@@ -99,11 +102,20 @@ def _read_entities(entities) -> dict:
                 for param, _ in grandchildren.get("param", []):
                     _check_attributes("param", param)
                 loaded.append({"pkg": attrs["pkg"], "plugin": attrs["plugin"], "name": attrs.get("name"),
-                               "params": tuple(p["from"] for p, _ in grandchildren.get("param", []))})
+                               "params": tuple(_param(p, typed) for p, _ in grandchildren.get("param", []))})
             containers.append({"pkg": attributes["pkg"], "exec": attributes["exec"], "name": attributes["name"],
                                "namespace": attributes.get("namespace"), "condition": _condition(attributes),
                                "nodes": loaded})
     return _description(args, nodes, containers)
+
+
+def _param(attributes, typed: bool) -> str | tuple[str, object]:
+    """A parameter file, or a (name, value) pair: launch_ros reads XML's text as YAML, while
+    a YAML file's value keeps its type (a quoted "true" stays a string, refused by a bool)."""
+    if "from" in attributes:
+        return attributes["from"]
+    value = attributes["value"]
+    return attributes["name"], value if typed else yaml.safe_load(value)
 
 
 def _xml_children(element) -> dict:
@@ -116,7 +128,7 @@ def _xml_children(element) -> dict:
 def read_xml(text: str) -> dict:
     root = ET.fromstring(text)
     assert root.tag == "launch"
-    return _read_entities((child.tag, dict(child.attrib), _xml_children(child)) for child in root)
+    return _read_entities(((child.tag, dict(child.attrib), _xml_children(child)) for child in root), typed=False)
 
 
 def _yaml_entity(tag: str, body) -> tuple[str, dict, dict]:
@@ -127,7 +139,8 @@ def _yaml_entity(tag: str, body) -> tuple[str, dict, dict]:
                 for key, value in body.items() if isinstance(value, list)}
     for key, value in attributes.items():
         # launch_yaml hands a true/false on to the attributes read as booleans only, text to the others.
-        assert isinstance(value, bool if key in BOOLEAN_ATTRIBUTES else str), f"{tag}: {key}: {value!r}"
+        if key not in TYPED_ATTRIBUTES:
+            assert isinstance(value, bool if key in BOOLEAN_ATTRIBUTES else str), f"{tag}: {key}: {value!r}"
     return tag, attributes, children
 
 
@@ -139,7 +152,7 @@ def read_yaml(text: str) -> dict:
         assert isinstance(item, dict) and len(item) == 1, f"each action is a mapping of one entity: {item!r}"
         ((tag, body),) = item.items()
         entities.append(_yaml_entity(tag, body))
-    return _read_entities(entities)
+    return _read_entities(entities, typed=True)
 
 
 # ----------------------------------------------------------------------------- Python
@@ -158,6 +171,8 @@ class _Reader:
             return self.names[node.id]
         if isinstance(node, ast.List):
             return [self.value(item) for item in node.elts]
+        if isinstance(node, ast.Dict):  # parameters by name, as launch_ros takes them
+            return {self.value(key): self.value(value) for key, value in zip(node.keys, node.values, strict=True)}
         if isinstance(node, ast.Call) and isinstance(node.func, ast.Name):
             return self.call(node.func.id, [self.value(arg) for arg in node.args],
                              {kw.arg: self.value(kw.value) for kw in node.keywords}, node)
@@ -209,7 +224,9 @@ def read_python(text: str) -> dict:
                                action.get("parameters", []), autostart, action.get("condition")))
         elif call == "ComposableNodeContainer":
             loaded = [{"pkg": d["package"], "plugin": d["plugin"], "name": d.get("name"),
-                       "params": tuple(d.get("parameters", []))} for d in action["composable_node_descriptions"]]
+                       "params": tuple(entry for p in d.get("parameters", [])
+                                       for entry in (p.items() if isinstance(p, dict) else [p]))}
+                      for d in action["composable_node_descriptions"]]
             containers.append({"pkg": action["package"], "exec": action["executable"], "name": action["name"],
                                "namespace": action.get("namespace"), "condition": action.get("condition"),
                                "nodes": loaded})
@@ -238,5 +255,7 @@ def expected_description(package) -> dict:
     containers = [{"pkg": "rclcpp_components", "exec": "$(var container_executable)",
                    "name": f"{package.name}_container", "namespace": "", "condition": container_condition,
                    "nodes": [{"pkg": package.name, "plugin": f"{package.name}::{node.class_name}", "name": node.name,
-                              "params": (f"{config}/{node.name}.yaml",)} for node in components]}]
+                              "params": (f"{config}/{node.name}.yaml",
+                                         *([("autostart", True)] if node.autostart else []))}
+                             for node in components]}]
     return _description(args, nodes, containers if components else [])

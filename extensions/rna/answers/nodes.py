@@ -17,7 +17,7 @@ import yaml
 from .. import catalogue, distros, names
 from .. import qos as qos_rules
 from ..interfaces import InterfaceType, parse_interface
-from ..model import BASE_MEMBERS, DIAGNOSTICS_TASK, Action, Node, Service, Timer, Topic
+from ..model import AUTOSTART_PARAMETER, BASE_MEMBERS, DIAGNOSTICS_TASK, Action, Node, Service, Timer, Topic
 from ..qos import Qos
 from ..parameters import INT_RANGE, Parameter, ParameterType, coerce_default, infer_type, on_step, parse_type
 from ..shapes import as_list, check_keys, load_yaml
@@ -327,7 +327,9 @@ def _check_node_names(node: Node) -> None:
     _check_unique((t.topic, t.label) for t in node.subscribers)
     _check_unique((s.name, s.label) for s in node.service_servers + node.service_clients)
     _check_unique((a.name, a.label) for a in node.actions)
-    _check_unique((p.name, f"parameter '{p.name}'") for p in node.parameters)
+    reserved = ([(AUTOSTART_PARAMETER, "the parameter a lifecycle component starts itself by")]
+                if node.starts_itself else [])
+    _check_unique([*reserved, *((p.name, f"parameter '{p.name}'") for p in node.parameters)])
     _check_unique((e.member, e.label) for e in node.endpoints)
     methods = [(method, endpoint.label) for endpoint in node.endpoints for method in endpoint.methods]
     methods.extend((name, "a lifecycle callback") for name in names.LIFECYCLE_CALLBACKS)
