@@ -89,6 +89,14 @@ def missing_packages(packages: Sequence[str] = DEBIAN_PACKAGES) -> list[str]:
     return [package for package in packages if package not in installed]
 
 
+@contextlib.contextmanager
+def apt_lock() -> Iterator[None]:
+    """One apt-get at a time among the test processes (it fails at once on a lock another holds)."""
+    with (Path(tempfile.gettempdir()) / "rna-template-apt.lock").open("a") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        yield
+
+
 def install_packages(packages: Sequence[str]) -> None:
     """`apt-get update`, then install `packages` without recommends. Root only."""
     if os.geteuid() != 0:
@@ -198,8 +206,7 @@ def ensure_environment(install: bool) -> Ros1Environment:
     if missing and install:
         # pytest-xdist workers set up at once: one installs, the others wait and find it done
         # (apt-get fails at once on the lock another one holds).
-        with (Path(tempfile.gettempdir()) / "rna-template-ros1-install.lock").open("a") as lock:
-            fcntl.flock(lock, fcntl.LOCK_EX)
+        with apt_lock():
             missing = missing_packages()
             if missing:
                 start = time.monotonic()
