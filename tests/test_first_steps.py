@@ -38,10 +38,12 @@ def readme_commands() -> list[str]:
 # ─── Fast: the pieces ─────────────────────────────────────────────────────────
 
 
-def test_readme_starts_with_the_demo_and_the_test_suite():
+def test_readme_starts_with_the_demo_and_the_test_suite_that_ci_runs():
     demo, suite = readme_commands()
     assert demo.split()[:4] == ["tests/env", "copier", "copy", "--trust"] and "~/rna_demo" in demo
-    assert suite.split("#")[0].split() == ["tests/env", "pytest"]
+    assert suite.split()[:2] == ["tests/env", "pytest"]
+    (ci_command,) = [line for line in (ROOT / ".ci" / "run").read_text().splitlines() if line.startswith("exec ")]
+    assert ci_command.split()[1:] == [*suite.split("#")[0].split(), '"$@"']
 
 
 @pytest.mark.parametrize("source", ["gh:lab/rna-template", "gl:lab/rna-template", "https://example.com/lab/rna.git",
