@@ -62,8 +62,8 @@ def render_of(kind: str, answers: dict, renders: str | None, template: Path, scr
 
 
 def main(answers_file: str, project_root: Path | None = None, template: Path = HERE.parent,
-         renders: str | None = None) -> int:
-    project = Project(project_root or Path.cwd(), answers_file)
+         renders: str | None = None, conflict: str | None = None) -> int:
+    project = Project(project_root or Path.cwd(), answers_file, conflict)
     old_answers = yaml.safe_load(project.committed(answers_file) or "{}") or {}
     new_answers = yaml.safe_load(project.text(answers_file) or "{}") or {}
     renamed = renames.renames(new_answers)  # new name -> old name, said by the answers once
@@ -102,4 +102,5 @@ def main(answers_file: str, project_root: Path | None = None, template: Path = H
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv[1]))
+    # argv: the answers file, then Copier's --conflict (inline or rej).
+    sys.exit(main(sys.argv[1], conflict=sys.argv[2] if len(sys.argv) > 2 else None))

@@ -944,6 +944,25 @@ def test_a_renamed_node_carries_the_users_file_values_launch_entry_and_build_lin
     assert broken_packages(destination) == [], result
 
 
+@pytest.mark.parametrize("flavor_name", FLAVORS)
+def test_a_renamed_nodes_config_conflict_is_loud_whatever_the_conflict_mode(project, flavor_name):
+    """Renamed while the default of its tuned gain changed: the user decides, the conflict
+    marked in the renamed config file or in a .rej beside it, as --conflict asks."""
+    flavor = Flavor(flavor_name)
+    for mode in ("inline", "rej"):
+        destination = project(flavor_name, name=mode)
+        tuned_with_comments(destination, flavor)
+        answers = renamed_driver(flavor)
+        find_node(answers["nodes"], RENAMED)["parameters"][0]["default"] = 2.5
+        result = run_update(destination, answers, extra_args=("--conflict", mode))
+        path = flavor.config_file(RENAMED)
+        assert result.returncode == 1 and path in str(result), f"--conflict {mode}\n{result}"
+        conflicts = conflicted_files(destination)
+        assert conflicts == [path if mode == "inline" else f"{path}.rej"], f"--conflict {mode}: {conflicts}"
+        text = (destination / path).read_text()
+        assert "# the frame of the lidar" in text and "stop_distance: 0.3  # mine" in text, text
+
+
 def test_a_rename_naming_no_node_of_the_package_is_refused(project):
     destination = project("ament_python")
     answers = renamed_driver(Flavor("ament_python"))

@@ -65,6 +65,7 @@ class Project:
 
     root: Path
     answers_file: str
+    conflict: str | None = None  # how the update was told to leave conflicts: inline or rej
     _committed: dict[str, str | None] = field(default_factory=dict, init=False, repr=False)
 
     def __post_init__(self) -> None:

@@ -224,8 +224,10 @@ def _carry_config(project, old, new, packages, old_node: Node, new_node: Node, r
     merged = config_merge.merge(generated, mine, fresh, descriptions)
     if merged is None:
         return set()  # not YAML the merge reads: kept where it was and named (protect.py)
-    project.write(target, config_merge.marked(merged.text, merged.conflicts) if merged.conflicts else merged.text)
+    config_merge.write_merged(project, target, merged)
     project.remove(source)
+    if (project.root / f"{source}.rej").exists():  # Copier's, for the file the rename moves
+        project.remove(f"{source}.rej")
     report.renamed.append((source, target))
     report.merged.add(target)
     for name, (yours, theirs) in merged.conflicts.items():
