@@ -184,7 +184,8 @@ def lint_python(files: list[Path]) -> None:
 
 def check_cpp_lines(path: Path) -> None:
     """What ament_cpplint and GCC's -Wall see line by line: 100 columns, and comments that end where they seem to."""
-    for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+    lines = path.read_text(encoding="utf-8").splitlines()
+    for number, line in enumerate(lines, 1):
         where = f"{path.name}:{number}: {line}"
         # cpplint counts East Asian wide characters as two columns, combining ones as none.
         width = sum(2 if unicodedata.east_asian_width(c) in "WF" else 0 if unicodedata.combining(c) else 1
@@ -193,6 +194,10 @@ def check_cpp_lines(path: Path) -> None:
         assert line == line.rstrip(), where
         comment = line.partition("//")[2] if line.lstrip().startswith("//") else ""
         assert not comment.endswith(("\\", "??/")), where  # a comment continued onto the next line
-        # A literal whose magnitude does not fit int64_t, and timers that would never wait.
+        # A literal whose magnitude does not fit int64_t, and timers that would never wait
+        # (but a lifecycle component's autostart timer, which fires once: it cancels itself).
         assert "-9223372036854775808" not in line, where
+        if number > 1 and lines[number - 2].endswith("autostart_timer_ = create_wall_timer("):
+            assert "autostart_timer_->cancel();" in lines[number + 1], where
+            continue
         assert not re.search(r"std::chrono::\w+\(0\)|ros::Duration\(0(\.0)?\)", line), where
