@@ -24,6 +24,23 @@ from .processes import NodeProcess
 
 # What a clean stop never prints: a Python traceback or an exception's name.
 UNCLEAN_OUTPUT = re.compile(r"Traceback|Error")
+# Except in Fast DDS's own log lines ("2026-11-26 22:00:12.401 [TYPELOOKUP_SERVICE_REPLY_LISTENER
+# Error] Error registering remote type: Inconsistent TypeObject", in colour): the middleware
+# telling of a peer that vanished mid-exchange (about 1 run in 400, the run itself exiting 0).
+# They are listed with the test's warnings, not counted against the run.
+_COLOUR = re.compile(r"\x1b\[[0-9;]*m")
+MIDDLEWARE_LOG_LINE = re.compile(r"^\d{4}-\d\d-\d\d [\d:.]+ \[[A-Z_]+ (?:Error|Warning)\] .*$", re.MULTILINE)
+
+
+def middleware_log(output: str) -> list[str]:
+    """Fast DDS's own log lines in a run's output, colours taken off."""
+    return MIDDLEWARE_LOG_LINE.findall(_COLOUR.sub("", output))
+
+
+def unclean(output: str) -> str | None:
+    """What UNCLEAN_OUTPUT finds in the output outside Fast DDS's own log lines, or None."""
+    found = UNCLEAN_OUTPUT.search(MIDDLEWARE_LOG_LINE.sub("", _COLOUR.sub("", output)))
+    return found.group() if found else None
 # A run still alive after its SIGINT is made to dump its Python stacks (faulthandler, on
 # SIGABRT). One stuck in rclpy's call into the middleware, creating or tearing down an
 # entity or the log, met a deadlock inside Fast DDS as a peer vanished (gdb showed its
@@ -60,7 +77,8 @@ class Run:
 def interrupt_all(runs: list[Run], timeout: float = 30.0) -> list[tuple[Run, str]]:
     """Send each run SIGINT `delay` seconds after its start; return the runs that did not end cleanly.
 
-    A clean end is exit code 0 with nothing in the output that UNCLEAN_OUTPUT matches;
+    A clean end is exit code 0 with nothing in the output that UNCLEAN_OUTPUT matches
+    (Fast DDS's own log lines aside);
     a run stuck in the middleware comes back as MIDDLEWARE_DEADLOCK.
     """
     pending = list(runs)
@@ -90,13 +108,20 @@ def _problem(run: Run, timeout: float) -> str | None:
         return f"still ran {timeout} s after SIGINT" if run.interrupted else "never started ROS"
     if not run.interrupted:
         return f"ended with exit code {code} before its SIGINT"
+    if code == -signal.SIGSEGV and crashed_in_middleware(run.process.output):
+        return MIDDLEWARE_CRASH
     if code != 0:
         return f"exited with code {code}"
-    unclean = UNCLEAN_OUTPUT.search(run.process.output)
-    return f"exited with code 0 but printed {unclean.group()!r}" if unclean else None
+    printed = unclean(run.process.output)
+    return f"exited with code 0 but printed {printed!r}" if printed else None
 
 
 MIDDLEWARE_DEADLOCK = "stuck in a middleware call (Fast DDS deadlock)"
+# A SIGSEGV in one of the middleware's own threads while main() destroyed the node (about 1
+# run in 1000 on an idle machine; before main() destroyed its entities itself, the same
+# crash came after main() returned, about 1 in 200, and is still a failure).
+MIDDLEWARE_CRASH = "crashed in a middleware thread while rclpy tore an entity down (Fast DDS)"
+NOT_COUNTED = (MIDDLEWARE_DEADLOCK, MIDDLEWARE_CRASH)
 
 
 def _dump_stacks(run: Run) -> None:
@@ -114,10 +139,18 @@ def stuck_in_middleware(output: str) -> bool:
                for frame in INNERMOST_FRAME.finditer(output))
 
 
-def split_deadlocks(failures: list[tuple[Run, str]]) -> tuple[list[tuple[Run, str]], list[Run]]:
-    """(the real failures, the runs stuck in the middleware)."""
-    return ([(run, problem) for run, problem in failures if problem != MIDDLEWARE_DEADLOCK],
-            [run for run, problem in failures if problem == MIDDLEWARE_DEADLOCK])
+def crashed_in_middleware(output: str) -> bool:
+    """A segmentation fault in a thread that is not Python's (faulthandler marks no thread
+    as the current one) while a thread's innermost Python frame is rclpy calling into the
+    middleware (main() destroying the node)."""
+    return ("Fatal Python error: Segmentation fault" in output and "Current thread" not in output
+            and stuck_in_middleware(output))
+
+
+def split_deadlocks(failures: list[tuple[Run, str]]) -> tuple[list[tuple[Run, str]], list[tuple[Run, str]]]:
+    """(the real failures, the runs the middleware deadlocked or crashed: NOT_COUNTED)."""
+    return ([(run, problem) for run, problem in failures if problem not in NOT_COUNTED],
+            [(run, problem) for run, problem in failures if problem in NOT_COUNTED])
 
 
 def report(failures: list[tuple[Run, str]], total: int, seed: int) -> str:
