@@ -19,6 +19,9 @@ import yaml
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
+import code_cache  # noqa: E402 - next to this file
+
+code_cache.import_from(HERE)
 from rna import Package, build_package  # noqa: E402 - the template's own package, next to this file
 from rna.update import blocks, config_merge, drift, kept, merge, protect, renames  # noqa: E402
 from rna.update.project import Project, Render, render  # noqa: E402

@@ -34,7 +34,7 @@ _HERE = Path(__file__).resolve().parent
 
 
 def _forget_other_rna() -> None:
-    for name in [name for name in sys.modules if name == "rna" or name.startswith("rna.")]:
+    for name in [name for name in sys.modules if name in ("rna", "code_cache") or name.startswith("rna.")]:
         origin = getattr(sys.modules[name], "__file__", None) or ""
         if not Path(origin).resolve().is_relative_to(_HERE):
             del sys.modules[name]
@@ -43,6 +43,9 @@ def _forget_other_rna() -> None:
 _forget_other_rna()
 sys.path.insert(0, str(_HERE))
 try:
+    import code_cache
+
+    code_cache.import_from(_HERE)
     import rna
     import rna.configs
     import rna.dialects
@@ -367,7 +370,7 @@ def _process_wide() -> types.ModuleType:
 
 
 def _compile_each_source_once_per_process(environment) -> None:
-    """Share Jinja's compiled code between the environments of one process.
+    """Share Jinja's compiled code between environments and runs (code_cache.py).
 
     Jinja compiles a template to a code object that takes its environment when it runs
     (what its bytecode cache stores), so environments that compile alike share it: the
@@ -376,27 +379,32 @@ def _compile_each_source_once_per_process(environment) -> None:
     A hit is preprocessed all the same (Copier's yield tag resets its state there).
     """
     compile_source = environment.compile
-    codes: dict = {}
+    codes = None
 
     def compile(source, name=None, filename=None, raw=False, defer_init=False):  # noqa: A001 - Jinja's name
         nonlocal codes
-        if raw or not isinstance(source, str):
+        if raw or not isinstance(source, str) or not _has_jinja_syntax(environment, source):
+            # Plain text compiles in no time, and some of it names the destination (a
+            # question's choices): kept, it would only grow the cache.
             return compile_source(source, name, filename, raw, defer_init)
-        if not codes:
-            shared = _process_wide().__dict__.setdefault("jinja_codes", {})
-            if len(shared) > 64:  # environments that compile differently: start again
-                shared.clear()
-            codes = shared.setdefault(_compiler_signature(environment), {})
+        if codes is None:  # the settings are complete once Copier compiles
+            codes = code_cache.store("jinja", _compiler_signature(environment))
         key = (source, name, defer_init)
-        if key in codes:
+        code = codes.get(key)
+        if code is not None:
             environment.preprocess(source, name, filename)
-            return codes[key]
+            return code
         code = compile_source(source, name, filename, raw, defer_init)
-        if len(codes) < 20000:
-            codes[key] = code
+        codes.put(key, code)
         return code
 
     environment.compile = compile
+
+
+def _has_jinja_syntax(environment, source: str) -> bool:
+    starts = (environment.block_start_string, environment.variable_start_string, environment.comment_start_string,
+              environment.line_statement_prefix, environment.line_comment_prefix)
+    return any(start and start in source for start in starts)
 
 
 def _ask_git_for_the_file_mode_once_per_worker() -> None:

@@ -18,7 +18,7 @@ def test_a_case_named_alone_brings_the_case_it_is_compared_with():
 
     assert benchmark.selected(["nodes_50"]) == {"nodes_50", "nodes_1"}
     assert benchmark.selected(["update_20_catkin"]) == {"update_20_catkin", "copy_20_catkin"}
-    assert benchmark.selected(["default"]) == {"default", "floor"}
+    assert benchmark.selected(["default"]) == {"default", "default_cold", "floor"}
     assert benchmark.selected(None) == {name for names in benchmark.CASE_GROUPS.values() for name in names}
 
 
@@ -28,11 +28,12 @@ def test_quick_mode_measures_the_default_package_against_the_floor(tmp_path):
                             capture_output=True, text=True, timeout=120, check=False)
     assert result.returncode == 0, result.stdout + result.stderr
     figures = json.loads(output.read_text())
-    assert set(figures["cases"]) == {"floor", "default"}
+    assert set(figures["cases"]) == {"floor", "default", "default_cold"}
     for case in figures["cases"].values():
         (sample,) = case["samples"]
         assert sample["wall"] > 0 and sample["cpu"] > 0
-    (row,) = figures["comparisons"]
+    row, cold = figures["comparisons"]
     assert (row["case"], row["reference"], row["goal"]) == ("default", "floor", 1.15)
+    assert (cold["case"], cold["reference"], cold["goal"]) == ("default_cold", "floor", None)
     assert row["met"] is (row["ratio"] <= 1.15)
     assert "default package / one-file template (floor)" in result.stdout

@@ -16,12 +16,16 @@ user's clone would be, and tagged with the current version: uncommitted changes 
 Groups of cases (--only takes a group or a case name; --quick = the `default` group, one
 run, no warm-up):
 
-  default   the default package vs a one-file Copier template (the floor)
+  default   the default package vs a one-file Copier template (the floor), and the same
+            package with no compiled code kept from earlier runs (a first run)
   node      one C++ node with every feature vs ros2-pkg-create 1.3.0 (own venv, cached;
             its older Copier's floor is measured too)
   scale     packages with 1, 10, 50 and 100 nodes
   update    `copier update` adding a node to a 20-node ament_cmake package vs copying it
   catkin    the same for a 20-node catkin (noetic) package
+
+The template keeps compiled code between runs (extensions/code_cache.py): here in the
+scratch folder, filled by one copy before the rounds; `default_cold` runs with it off.
 
 --profile adds where the time goes for the default package, 1 and 50 nodes and the updates
 (tests/tools/profiling.py). No test asserts on these figures.
@@ -148,11 +152,12 @@ class Case:
     prepare: Callable[[Path], tuple[list[str], Path]]  # a fresh folder -> (command, working dir)
     produces: str  # a path (relative to the fresh folder) that must exist afterwards
     samples: list[Sample] = field(default_factory=list)
+    env: dict[str, str] = field(default_factory=dict)  # over the bench's environment
 
     def run(self, folder: Path, env: dict[str, str]) -> Sample:
         folder.mkdir(parents=True)
         argv, cwd = self.prepare(folder)
-        sample = measure(argv, cwd, env)
+        sample = measure(argv, cwd, {**env, **self.env})
         if not (folder / self.produces).exists():
             raise RuntimeError(f"{self.name}: {self.produces} is missing after {' '.join(argv)}")
         return sample
@@ -177,6 +182,7 @@ class Comparison:
 
 COMPARISONS = (
     Comparison("default package / one-file template (floor)", "default", "floor", 1.15),
+    Comparison("the same, a first run (no compiled code kept) / floor", "default_cold", "floor"),
     Comparison("all-features C++ node / ros2-pkg-create 1.3.0", "node_all", "ros2_pkg_create", 1.0),
     Comparison("ros2-pkg-create / its Copier's floor (same kind of source: a folder)", "ros2_pkg_create",
                "floor_peer_dir"),
@@ -199,7 +205,8 @@ class Bench:
     def __init__(self, work: Path, template_source: Path, groups: set[str]):
         self.work = work
         self.env = {**os.environ, **GIT_IDENTITY, "NO_COLOR": "1", "GIT_CONFIG_NOSYSTEM": "1",
-                    "COPIER_SETTINGS_PATH": str(work / "copier-settings.yml")}
+                    "COPIER_SETTINGS_PATH": str(work / "copier-settings.yml"),
+                    "RNA_TEMPLATE_CACHE_DIR": str(work / "code-cache")}
         self.env.pop("RNA_BENCH_PROFILE_DIR", None)
         (work / "copier-settings.yml").write_text("{}\n")
         self.copier = str(Path(sys.executable).with_name("copier"))
@@ -220,6 +227,15 @@ class Bench:
                 destination = work / f"base-{group}" / "project"
                 self.bases[group] = generate_project(self.template, destination, scaled_package(UPDATE_NODES, ros1),
                                                      vcs_ref=NEW_VERSION)
+
+    def fill_code_cache(self) -> None:
+        """One copy not measured, so that the cases find the template's compiled code kept, as
+        every run after a user's first does (without it, the first round would compile)."""
+        folder = self.work / "fill-code-cache"
+        folder.mkdir()
+        argv, cwd = self.copy(self.template, self.data_file("default", {}))(folder)
+        measure(argv, cwd, self.env)
+        shutil.rmtree(folder)
 
     def _template_repo(self, source: Path) -> Path:
         """The whole repository as a user's clone has it (docs and tests too), working tree included."""
@@ -266,6 +282,9 @@ class Bench:
                  self.copy(self.floor, floor_data), "project/README.md"),
             Case("default", "default", "default package (talker + listener)",
                  self.copy(self.template, self.data_file("default", {})), "project/project/package.xml"),
+            Case("default_cold", "default", "the same, a first run: no compiled code kept",
+                 self.copy(self.template, self.data_file("default", {})), "project/project/package.xml",
+                 env={"RNA_TEMPLATE_CACHE_DIR": ""}),
             Case("node_all", "node", "all-features C++ node + interfaces package",
                  self.copy(self.template, self.data_file("node_all", ALL_FEATURES)),
                  "project/robot_interfaces/action/Fibonacci.action"),
@@ -459,6 +478,7 @@ def main(argv: list[str] | None = None) -> int:
         if bench.peer_error:
             print(f"benchmark: {bench.peer_error}; the peer's cases are left out", file=sys.stderr)
         cases = [case for case in bench.cases() if case.name in names]
+        bench.fill_code_cache()
         run_rounds(cases, bench, arguments.runs, arguments.warmup)
         rows = comparisons({case.name: case for case in cases})
         if arguments.runs:
@@ -485,7 +505,7 @@ def main(argv: list[str] | None = None) -> int:
 
 
 CASE_GROUPS = {
-    "default": ("floor", "default"),
+    "default": ("floor", "default", "default_cold"),
     "node": ("node_all", "ros2_pkg_create", "floor_peer_git", "floor_peer_dir"),
     "scale": ("nodes_1", "nodes_10", "nodes_50", "nodes_100"),
     "update": ("copy_20", "update_20"),

@@ -1,0 +1,148 @@
+"""Compiled code kept between Copier runs, in the user's cache folder.
+
+Every `copier copy` or `copier update` is a new process on a new clone of the template,
+so Jinja compiles every template file and copier.yml string again, and Python compiles
+the template's own modules again (a new clone has no __pycache__): about a fifth of a
+default copy (docs/pages/reference/performance.md). Here the code is kept, keyed by
+what was compiled (the source, hashed) and by what compiled it (Python's bytecode
+version; for Jinja, the environment's settings): a changed source, another Jinja or
+another Python compiles anew, and one file per compiler holds its code objects. A cache
+that cannot be read or written is passed over; RNA_TEMPLATE_CACHE_DIR moves it, and set
+empty it turns it off.
+
+Imported by plain name, before `rna`, by the scripts Copier runs: copier_glue.py,
+after_update.py, add_node.py.
+"""
+
+from __future__ import annotations
+
+import atexit
+import hashlib
+import importlib.machinery
+import importlib.util
+import marshal
+import os
+import sys
+import tempfile
+from pathlib import Path
+
+_FORMAT = 1
+_MAX_CODES = 5000  # per file; past it, a run keeps only the code it used
+_STORES = "rna_template_code_stores"  # process-wide: the glue is loaded afresh for each Jinja environment
+
+
+def folder() -> Path | None:
+    """Where the code is kept, or None when caching is turned off."""
+    chosen = os.environ.get("RNA_TEMPLATE_CACHE_DIR")
+    if chosen is not None:
+        return Path(chosen) if chosen else None
+    from platformdirs import user_cache_dir  # Copier's own choice for its cache
+
+    return Path(user_cache_dir("rna-template", appauthor=False)) / "code"
+
+
+class Store:
+    """The code objects of one compiler: read at first use, written back at exit when it grew.
+
+    Kept process-wide and used by later template versions: its methods only ever grow.
+    """
+
+    def __init__(self, path: Path | None):
+        self.path = path
+        self.codes = self._read() if path is not None else {}
+        self.used: set[bytes] = set()
+        self.added = False
+        if path is not None:
+            atexit.register(self.save)
+
+    def get(self, key: object):
+        digest = _digest(key)
+        code = self.codes.get(digest)
+        if code is not None:
+            self.used.add(digest)
+        return code
+
+    def put(self, key: object, code) -> None:
+        digest = _digest(key)
+        self.codes[digest] = code
+        self.used.add(digest)
+        self.added = True
+
+    def save(self) -> None:
+        """Merge what this process compiled into the file (other processes may have written it)."""
+        if not self.added or self.path is None:
+            return
+        codes = {**self._read(), **self.codes}
+        if len(codes) > _MAX_CODES:
+            codes = {digest: codes[digest] for digest in self.used}
+        written = None
+        try:
+            self.path.parent.mkdir(mode=0o700, parents=True, exist_ok=True)
+            with tempfile.NamedTemporaryFile("wb", dir=self.path.parent, prefix=".tmp-", delete=False) as file:
+                written = file.name
+                marshal.dump((_FORMAT, codes), file)
+            os.replace(written, self.path)  # whole or not at all, for a process reading it now
+        except (OSError, ValueError):
+            if written is not None:
+                Path(written).unlink(missing_ok=True)
+        self.added = False
+
+    def _read(self) -> dict:
+        try:
+            data = marshal.loads(self.path.read_bytes())
+        except (OSError, EOFError, ValueError, TypeError):
+            return {}
+        if not (isinstance(data, tuple) and len(data) == 2 and data[0] == _FORMAT and isinstance(data[1], dict)):
+            return {}
+        return data[1]
+
+
+def _digest(key: object) -> bytes:
+    return hashlib.blake2b(repr(key).encode("utf-8", "surrogatepass"), digest_size=20).digest()
+
+
+def store(kind: str, compiler: str) -> Store:
+    """The store of one compiler (`compiler` names it whole: settings, versions), one per process."""
+    stores = sys.modules.setdefault(_STORES, type(sys)(_STORES)).__dict__
+    name = hashlib.blake2b(f"{compiler}|{importlib.util.MAGIC_NUMBER.hex()}|{sys.version}".encode(),
+                           digest_size=12).hexdigest()
+    key = f"{kind}-{name}"
+    if key not in stores:
+        where = folder()
+        stores[key] = Store(where / f"{key}.marshal" if where is not None else None)
+    return stores[key]
+
+
+class _CachedSourceLoader(importlib.machinery.SourceFileLoader):
+    """Python's loader for source files, with code from the store, and no __pycache__ written."""
+
+    def get_code(self, fullname):
+        path = self.get_filename(fullname)
+        source = self.get_data(path)
+        codes = store("python", "")
+        key = (fullname, hashlib.sha256(source).hexdigest())
+        code = codes.get(key)
+        if code is None:
+            code = self.source_to_code(source, path)
+            codes.put(key, code)
+        else:
+            import _imp
+
+            _imp._fix_co_filename(code, path)  # what importlib does with code read from a .pyc
+        return code
+
+
+def import_from(root: Path) -> None:
+    """Have modules under `root` (a folder on sys.path) imported with code from the store."""
+    prefix = str(root)
+    if any(getattr(hook, "rna_template_root", None) == prefix for hook in sys.path_hooks):
+        return
+
+    def finder(path: str):
+        if path != prefix and not path.startswith(prefix + os.sep):
+            raise ImportError("not the template's folder")
+        return importlib.machinery.FileFinder(path, (_CachedSourceLoader, importlib.machinery.SOURCE_SUFFIXES))
+
+    finder.rna_template_root = prefix
+    sys.path_hooks.insert(0, finder)
+    sys.path_importer_cache.pop(prefix, None)

@@ -1,0 +1,166 @@
+"""Compiled code kept between Copier runs (extensions/code_cache.py): found again, never wrong.
+
+A run that finds the code compiles nothing and writes the same package; a file that does
+not read, a changed source or a cache turned off mean compiling as before.
+"""
+
+from __future__ import annotations
+
+import filecmp
+import json
+import marshal
+import os
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import code_cache
+from support.generation import FIXED_ANSWERS, snapshot_template, subprocess_env
+
+# A Copier run in a process of its own that reports how many sources Jinja and Python compiled.
+COUNTING_RUN = textwrap.dedent("""
+    import atexit, importlib.machinery, json, sys
+    import jinja2
+    compiled = {"jinja": 0, "python": []}
+    jinja_compile = jinja2.Environment.compile
+    def counted(self, source, name=None, filename=None, raw=False, defer_init=False):
+        compiled["jinja"] += not raw and isinstance(source, str) and "{" in source  # Jinja, not plain text
+        return jinja_compile(self, source, name, filename, raw, defer_init)
+    jinja2.Environment.compile = counted
+    python_compile = importlib.machinery.SourceFileLoader.source_to_code
+    def counted_python(self, data, path, *args, **kwargs):
+        compiled["python"].append(path)
+        return python_compile(self, data, path, *args, **kwargs)
+    importlib.machinery.SourceFileLoader.source_to_code = counted_python
+    atexit.register(lambda: print("COMPILED " + json.dumps(compiled)))
+    from copier._cli import CopierApp
+    CopierApp.run(["copier", *sys.argv[1:]])
+""")
+
+
+def copy_counting(template: Path, run: Path, cache: str) -> dict:
+    """A copy into run/robot (the package's name comes from its folder)."""
+    destination = run / "robot"
+    run.mkdir()
+    data = run / "answers.yml"
+    data.write_text(json.dumps(FIXED_ANSWERS))
+    result = subprocess.run([sys.executable, "-c", COUNTING_RUN, "copy", "--trust", "--defaults", "--quiet",
+                             "--vcs-ref", "HEAD", "--data-file", str(data), str(template), str(destination)],
+                            env={**subprocess_env(), "RNA_TEMPLATE_CACHE_DIR": cache}, capture_output=True,
+                            text=True, timeout=120, check=False)
+    assert result.returncode == 0, result.stdout + result.stderr
+    line = next(line for line in result.stdout.splitlines() if line.startswith("COMPILED "))
+    compiled = json.loads(line.removeprefix("COMPILED "))
+    compiled["python"] = [path for path in compiled["python"] if "/extensions/" in path]
+    return compiled
+
+
+def differing_files(left: Path, right: Path) -> list[str]:
+    """The files that differ between two trees (none when they are the same)."""
+    comparison = filecmp.dircmp(left, right, ignore=[".git"])
+    differ = [*comparison.left_only, *comparison.right_only, *comparison.diff_files, *comparison.funny_files]
+    for sub in comparison.subdirs.values():
+        differ += differing_files(Path(sub.left), Path(sub.right))
+    return differ
+
+
+def test_a_second_run_compiles_nothing_and_writes_the_same_package(tmp_path):
+    template = snapshot_template(tmp_path / "template")
+    cache = tmp_path / "cache"
+    first = copy_counting(template, tmp_path / "first", str(cache))
+    second = copy_counting(template, tmp_path / "second", str(cache))
+    off = copy_counting(template, tmp_path / "off", "")
+    assert first["jinja"] > 10 and len(first["python"]) > 10
+    # Copier loads the glue by its path, and the glue the cache, with Python's loader (a .pyc in the clone at best).
+    assert second["jinja"] == 0
+    assert {Path(path).name for path in second["python"]} <= {"copier_glue.py", "code_cache.py"}
+    assert off["jinja"] == first["jinja"]
+    assert sorted(path.name for path in cache.iterdir()) == sorted(path.name for path in cache.glob("*.marshal"))
+    assert not differing_files(tmp_path / "first", tmp_path / "second")
+    assert not differing_files(tmp_path / "first", tmp_path / "off")
+
+
+def test_a_changed_template_file_is_compiled_again(tmp_path):
+    template = snapshot_template(tmp_path / "template")
+    cache = str(tmp_path / "cache")
+    copy_counting(template, tmp_path / "before", cache)
+    readme = template / "template" / "README.md.jinja"
+    readme.write_text(readme.read_text() + "\nA line of the lab's own.\n")
+    subprocess.run(["git", "commit", "-qam", "lab line"], cwd=template, env=subprocess_env(), check=True)
+    after = copy_counting(template, tmp_path / "after", cache)
+    assert after["jinja"] == 1
+    assert "A line of the lab's own." in (tmp_path / "after" / "robot" / "README.md").read_text()
+
+
+def test_code_is_found_again_by_what_was_compiled(tmp_path):
+    store = code_cache.Store(tmp_path / "codes.marshal")
+    code = compile("answer = 42", "<test>", "exec")
+    store.put(("answer = 42", "name", False), code)
+    store.save()
+    again = code_cache.Store(tmp_path / "codes.marshal")
+    assert again.get(("answer = 42", "name", False)) == code
+    assert again.get(("answer = 43", "name", False)) is None
+    assert again.get(("answer = 42", "other name", False)) is None
+
+
+def test_a_file_that_does_not_read_is_passed_over_and_written_anew(tmp_path):
+    path = tmp_path / "codes.marshal"
+    for broken in (b"", b"not marshal", marshal.dumps(("another format", {})), marshal.dumps([1, 2])):
+        path.write_bytes(broken)
+        store = code_cache.Store(path)
+        assert store.get("anything") is None
+        store.put("anything", compile("x = 1", "<test>", "exec"))
+        store.save()
+        assert code_cache.Store(path).get("anything") is not None
+
+
+def test_saving_merges_what_other_processes_wrote(tmp_path):
+    path = tmp_path / "codes.marshal"
+    one, other = code_cache.Store(path), code_cache.Store(path)
+    one.put("one", compile("x = 1", "<one>", "exec"))
+    other.put("other", compile("x = 2", "<other>", "exec"))
+    one.save()
+    other.save()
+    merged = code_cache.Store(path)
+    assert merged.get("one") is not None and merged.get("other") is not None
+
+
+def test_past_its_size_a_file_keeps_the_code_of_the_last_run(tmp_path, monkeypatch):
+    path = tmp_path / "codes.marshal"
+    old = code_cache.Store(path)
+    for index in range(5):
+        old.put(f"old {index}", compile(f"x = {index}", "<old>", "exec"))
+    old.save()
+    monkeypatch.setattr(code_cache, "_MAX_CODES", 4)
+    run = code_cache.Store(path)
+    run.get("old 0")
+    run.put("new", compile("y = 1", "<new>", "exec"))
+    run.save()
+    kept = code_cache.Store(path)
+    assert [kept.get(key) is not None for key in ("old 0", "old 1", "new")] == [True, False, True]
+
+
+def test_turned_off_or_unwritable_it_only_compiles(tmp_path, monkeypatch):
+    monkeypatch.setenv("RNA_TEMPLATE_CACHE_DIR", "")
+    assert code_cache.folder() is None
+    store = code_cache.Store(None)
+    store.put("key", compile("x = 1", "<test>", "exec"))
+    store.save()
+    (tmp_path / "file").write_text("not a folder")
+    blocked = code_cache.Store(tmp_path / "file" / "codes.marshal")
+    blocked.put("key", compile("x = 1", "<test>", "exec"))
+    blocked.save()  # no error: the run goes on without a cache
+    assert sorted(os.listdir(tmp_path)) == ["file"]
+
+
+def test_the_template_folder_is_left_without_pycache(tmp_path):
+    template = snapshot_template(tmp_path / "template")
+    env = {**subprocess_env(), "RNA_TEMPLATE_CACHE_DIR": str(tmp_path / "cache")}
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
+    script = f"import sys; sys.path.insert(0, {str(template / 'extensions')!r}); import code_cache; " \
+             f"code_cache.import_from(__import__('pathlib').Path({str(template / 'extensions')!r})); import rna"
+    for _ in range(2):
+        subprocess.run([sys.executable, "-c", script], env=env, check=True, timeout=60)
+    assert {path.name.partition(".")[0] for path in template.rglob("*.pyc")} <= {"code_cache"}  # imported first
+    assert list((tmp_path / "cache").glob("python-*.marshal"))
