@@ -28,7 +28,6 @@ import yaml
 from copier.errors import UserMessageError
 from copier_template_extensions import ContextHook
 from jinja2 import pass_context
-from jinja2.ext import Extension
 
 _HERE = Path(__file__).resolve().parent
 
@@ -56,6 +55,7 @@ try:
     import rna.graph
     import rna.replies
     import rna.lab
+    import rna.model
     import rna.layout
     import rna.names
     import rna.update.kept
@@ -77,7 +77,7 @@ def answer_error(context, question: str) -> str:
     """Copier validator: the broken rule for an answer typed at a prompt, else "".
 
     Answers given with --data, --data-file or --defaults are checked when rendering
-    starts instead (PackageContext), where a broken rule ends the run with one line; a
+    starts instead (RnaExtension.hook), where a broken rule ends the run with one line; a
     validator failing there would print a traceback.
     """
     conf = context.get("_copier_conf") or {}
@@ -288,8 +288,10 @@ def absolute_source(answers: Mapping, cwd: str | None = None) -> dict:
     return recorded
 
 
-class RnaExtension(Extension):
-    """Filters and globals for copier.yml and the templates."""
+class RnaExtension(ContextHook):
+    """Filters and globals for copier.yml and the templates, and `package`, the checked model
+    of all answers, added to every render (one extension: Copier loads this file afresh for
+    each extension copier.yml names)."""
 
     def __init__(self, environment):
         super().__init__(environment)
@@ -299,7 +301,7 @@ class RnaExtension(Extension):
         environment.globals.update(
             answer_error=answer_error, answers_file_name=answers_file_name, base_files=base_files,
             builds_interfaces=rna.distros.BUILDS_INTERFACES, languages=rna.distros.languages,
-            ubuntu=rna.distros.UBUNTU,
+            ubuntu=rna.distros.UBUNTU, autostart_parameter=rna.model.AUTOSTART_PARAMETER,
             default_description=default_description, default_nodes=default_nodes,
             nodes_dialog=nodes_dialog, nodes_dialog_pending=nodes_dialog_pending,
             existing_package=existing_package, found_interfaces=found_interfaces, git_config=git_config,
@@ -336,6 +338,43 @@ class RnaExtension(Extension):
             with_article=rna.wording.with_article,
             yaml_literal=rna.configs.yaml_literal,
         )
+
+    def hook(self, context):
+        """Check the answers, and add their model as `package` to the context of a render."""
+        if (context.get("_copier_conf") or {}).get("answers_file") == "":
+            # Copier renders the answers file's name with this value in the middle of a
+            # render whose hook runs here too (every file, at its first look at the name):
+            # that name needs no package and no checks.
+            return
+        _refuse_hand_edited_answers(context)
+        if str(context.get("_copier_phase")) == "tasks":
+            _keep_update_render(context)
+        elif str(context.get("_copier_phase")) == "migrate" and str(context.get("_copier_operation")) == "update":
+            _point_to_kept_renders(context)
+        if str(context.get("_copier_phase")) != "render":
+            _check_given_answers(context)
+            return
+        previous = _previous_answers(context)
+        renamed = rna.update.renames.rename_error(previous, context, update=_operation() != "copy")
+        if renamed is not None:
+            raise UserMessageError(f"rna-template: invalid answer to 'nodes': {renamed} (nothing was written)")
+        if previous is not None:  # an update (the first render in the project comes before any write)
+            _refuse_switch(previous, context)
+            # nodes given without a language keep theirs
+            rna.update.resolve.keep_languages(context.get("nodes"), previous)
+        answers = {key: context.get(key) for key in (*rna.answers.QUESTIONS, "copyright_year")}
+        # Whether it is an update is part of the key: Copier renders some names before it
+        # says which answers file it updates, and the update's checks must still run.
+        key = _answers_key([answers, str((context.get('_copier_conf') or {}).get('dst_path')), previous is not None])
+        if key not in _models:
+            try:
+                _models[key] = rna.build_package(answers)
+            except rna.AnswerError as error:
+                raise UserMessageError(f"rna-template: {error}") from None
+            _refuse_to_overwrite(_models[key], context)
+            if previous is not None:
+                _refuse_to_take_over(_models[key], previous, context)
+        context["package"] = _models[key]
 
 
 def _compile_each_string_once(environment) -> None:
@@ -479,46 +518,6 @@ def _answers_key(values: list) -> bytes | str:
         return pickle.dumps(values, protocol=5)
     except (pickle.PicklingError, TypeError, AttributeError):
         return json.dumps(values, sort_keys=True, default=str)
-
-
-class PackageContext(ContextHook):
-    """Adds `package`, the checked model of all answers, to every template render."""
-
-    def hook(self, context):
-        if (context.get("_copier_conf") or {}).get("answers_file") == "":
-            # Copier renders the answers file's name with this value in the middle of a
-            # render whose hook runs here too (every file, at its first look at the name):
-            # that name needs no package and no checks.
-            return
-        _refuse_hand_edited_answers(context)
-        if str(context.get("_copier_phase")) == "tasks":
-            _keep_update_render(context)
-        elif str(context.get("_copier_phase")) == "migrate" and str(context.get("_copier_operation")) == "update":
-            _point_to_kept_renders(context)
-        if str(context.get("_copier_phase")) != "render":
-            _check_given_answers(context)
-            return
-        previous = _previous_answers(context)
-        renamed = rna.update.renames.rename_error(previous, context, update=_operation() != "copy")
-        if renamed is not None:
-            raise UserMessageError(f"rna-template: invalid answer to 'nodes': {renamed} (nothing was written)")
-        if previous is not None:  # an update (the first render in the project comes before any write)
-            _refuse_switch(previous, context)
-            # nodes given without a language keep theirs
-            rna.update.resolve.keep_languages(context.get("nodes"), previous)
-        answers = {key: context.get(key) for key in (*rna.answers.QUESTIONS, "copyright_year")}
-        # Whether it is an update is part of the key: Copier renders some names before it
-        # says which answers file it updates, and the update's checks must still run.
-        key = _answers_key([answers, str((context.get('_copier_conf') or {}).get('dst_path')), previous is not None])
-        if key not in _models:
-            try:
-                _models[key] = rna.build_package(answers)
-            except rna.AnswerError as error:
-                raise UserMessageError(f"rna-template: {error}") from None
-            _refuse_to_overwrite(_models[key], context)
-            if previous is not None:
-                _refuse_to_take_over(_models[key], previous, context)
-        context["package"] = _models[key]
 
 
 def _operation() -> str | None:

@@ -23,6 +23,7 @@ from hypothesis import HealthCheck, Phase, settings
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+from support import ros1 as ros1_support  # noqa: E402
 from support import ros2 as ros2_support  # noqa: E402
 from support.generation import ROOT, generate, snapshot_template  # noqa: E402
 from support.tiers import unavailable  # noqa: E402
@@ -126,3 +127,12 @@ def ros2_of():
 def ros2(ros2_of):
     """ROS 2 Kilted from PyPI wheels: the ros tier, and the linters the ros1 tier borrows."""
     return ros2_of(ros2_support.DEFAULT_DISTRO)
+
+
+@pytest.fixture(scope="session")
+def ros1():
+    """ROS 1 Noetic from Debian's packages (installed when running as root), set up once."""
+    try:
+        return ros1_support.ensure_environment(install=os.geteuid() == 0)
+    except ros1_support.Ros1Unavailable as error:
+        unavailable(f"ROS 1 from Debian's packages is not available: {error}")

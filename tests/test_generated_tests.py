@@ -37,7 +37,6 @@ from support import ros1 as ros1_support
 from support import ros2 as ros2_support
 from support.generation import VARIANTS, example, generate
 from support.packages import model_of, package_dir
-from support.tiers import unavailable
 
 STAND_INS = Path(__file__).parent / "support" / "stand_ins"
 
@@ -177,6 +176,17 @@ class Results:
     output: str
 
 
+def results_of(packages: list[str], run_output: str, show) -> dict[str, Results]:
+    """Each package's test summary, from `show(package)` (colcon test-result, catkin_test_results)."""
+    results = {}
+    for name in packages:
+        shown = show(name)
+        found = SUMMARY.search(shown.stdout)
+        assert found, f"{name}: no summary\n{shown.stdout}{shown.stderr}\n{run_output[-4000:]}"
+        results[name] = Results(*map(int, found.groups()), shown.stdout + run_output)
+    return results
+
+
 def mutate(path: Path, old: str, new: str) -> None:
     """Break a node's ROS interface the way a wrong edit of its base class would."""
     text = path.read_text()
@@ -202,14 +212,9 @@ def colcon_tested(ros2, template_dir, tmp_path_factory) -> dict[str, Results]:
     tested = subprocess.run([colcon, "test", "--base-paths", "src", "--event-handlers", "console_cohesion+",
                              "desktop_notification-", "--pytest-args", *PYTEST_ARGS],
                             cwd=path, env=env, capture_output=True, text=True, timeout=600, check=False)
-    results = {}
-    for name in [*PACKAGES, MUTATED]:
-        shown = subprocess.run([colcon, "test-result", "--verbose", "--test-result-base", f"build/{name}"],
-                               cwd=path, env=env, capture_output=True, text=True, timeout=120, check=False)
-        found = SUMMARY.search(shown.stdout)
-        assert found, f"{name}: no summary\n{shown.stdout}{shown.stderr}\n{tested.stdout[-4000:]}"
-        results[name] = Results(*map(int, found.groups()), shown.stdout + tested.stdout)
-    return results
+    return results_of([*PACKAGES, MUTATED], tested.stdout, lambda name: subprocess.run(
+        [colcon, "test-result", "--verbose", "--test-result-base", f"build/{name}"],
+        cwd=path, env=env, capture_output=True, text=True, timeout=120, check=False))
 
 
 @pytest.mark.ros
@@ -237,13 +242,6 @@ CATKIN_PACKAGES = {"robot_ros1": example("robot_ros1"), "tracker_ros1": example(
 CATKIN_MUTATED = "mutated_bringup"
 
 
-@pytest.fixture(scope="module")
-def ros1():
-    try:
-        return ros1_support.ensure_environment(install=os.geteuid() == 0)
-    except ros1_support.Ros1Unavailable as error:
-        unavailable(f"ROS 1 from Debian's packages is not available: {error}")
-
 
 @pytest.fixture(scope="module")
 def catkin_tested(ros1, template_dir, tmp_path_factory) -> dict[str, Results]:
@@ -262,15 +260,9 @@ def catkin_tested(ros1, template_dir, tmp_path_factory) -> dict[str, Results]:
         tested = subprocess.run([*prefix, "catkin_make", "-C", str(path), "-j2",
                                  f"-DPYTHON_EXECUTABLE={ros1_support.PYTHON}", "run_tests"],
                                 cwd=path, env=env, capture_output=True, text=True, timeout=900, check=False)
-    results = {}
-    for name in [*CATKIN_PACKAGES, CATKIN_MUTATED]:
-        folder = path / "build" / "test_results" / name
-        shown = subprocess.run(["catkin_test_results", "--verbose", str(folder)], cwd=path, env=env,
-                               capture_output=True, text=True, timeout=120, check=False)
-        found = SUMMARY.search(shown.stdout)
-        assert found, f"{name}: no summary\n{shown.stdout}{shown.stderr}\n{tested.stdout[-4000:]}"
-        results[name] = Results(*map(int, found.groups()), shown.stdout + tested.stdout)
-    return results
+    return results_of([*CATKIN_PACKAGES, CATKIN_MUTATED], tested.stdout, lambda name: subprocess.run(
+        ["catkin_test_results", "--verbose", str(path / "build" / "test_results" / name)],
+        cwd=path, env=env, capture_output=True, text=True, timeout=120, check=False))
 
 
 @pytest.mark.ros1

@@ -907,6 +907,15 @@ def renamed_text(line: str) -> str:
     return re.sub(r"(?<![A-Za-z0-9_])((?:\$\{PROJECT_NAME\}_)?)driver(?![A-Za-z0-9_])", rf"\g<1>{RENAMED}", line)
 
 
+def assert_carried(result, destination: Path, figure, carried: list) -> None:
+    """The update merged cleanly and every block the user wrote is where the rename moved it
+    (`carried`: label, path, lines), counted in the merge-safety figure."""
+    figure(result, destination, [(where, lines) for _, where, lines in carried])
+    assert result.returncode == 0 and not conflicted_files(destination), f"{conflict_excerpts(destination)}{result}"
+    for label, where, lines in carried:
+        assert missing_block(destination / where, lines) is None, f"[{label}] {where}\n{result}"
+
+
 @pytest.mark.parametrize("flavor_name", FLAVORS)
 def test_a_renamed_node_carries_the_users_file_values_launch_entry_and_build_lines(project, figure, flavor_name):
     flavor = Flavor(flavor_name)
@@ -924,10 +933,7 @@ def test_a_renamed_node_carries_the_users_file_values_launch_entry_and_build_lin
     moved = {old_file: new_file, flavor.config_file("driver"): flavor.config_file(RENAMED)}
     carried = [(label, moved.get(where, where), [renamed_text(line) for line in lines]
                 if where in (flavor.build_file, flavor.launch_file) else lines) for label, where, lines in edits.blocks]
-    figure(result, destination, [(where, lines) for _, where, lines in carried])
-    assert result.returncode == 0 and not conflicted_files(destination), f"{conflict_excerpts(destination)}{result}"
-    for label, where, lines in carried:
-        assert missing_block(destination / where, lines) is None, f"[{label}] {where}\n{result}"
+    assert_carried(result, destination, figure, carried)
     assert not (destination / old_file).exists() and not (destination / flavor.config_file("driver")).exists()
     code = (destination / new_file).read_text()
     class_name = "BaseController"
@@ -1004,10 +1010,7 @@ def test_a_renamed_package_carries_the_users_files_and_lines(project, figure, fl
 
     carried = [(label, package_renamed(where), [package_renamed_line(line) for line in lines])
                for label, where, lines in edits.blocks]
-    figure(result, destination, [(where, lines) for _, where, lines in carried])
-    assert result.returncode == 0 and not conflicted_files(destination), f"{conflict_excerpts(destination)}{result}"
-    for label, where, lines in carried:
-        assert missing_block(destination / where, lines) is None, f"[{label}] {where}\n{result}"
+    assert_carried(result, destination, figure, carried)
     assert not (destination / PACKAGE).exists(), sorted(p.name for p in (destination / PACKAGE).rglob("*"))
     assert f"<name>{NEW_PACKAGE}</name>" in (destination / NEW_PACKAGE / "package.xml").read_text()
     if flavor.name != "ament_python":

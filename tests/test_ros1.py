@@ -9,7 +9,6 @@ each run against a private master inside its own network namespace.
 from __future__ import annotations
 
 import contextlib
-import os
 import random
 from dataclasses import dataclass
 from pathlib import Path
@@ -21,7 +20,6 @@ from support.drawn import Linter, check_drawn, code_linters, thorough, whole
 from support.generation import VARIANTS, add_node, copy_template, example, generate
 from support.processes import NodeProcess, assert_clean_exit, started
 from support.strategies import valid_answers
-from support.tiers import unavailable
 
 pytestmark = pytest.mark.ros1
 
@@ -72,13 +70,6 @@ PAIRS = {
     for receiver_language in ("cpp", "py")
 }
 
-
-@pytest.fixture(scope="session")
-def ros1():
-    try:
-        return ros1_support.ensure_environment(install=os.geteuid() == 0)
-    except ros1_support.Ros1Unavailable as error:
-        unavailable(f"ROS 1 from Debian's packages is not available: {error}")
 
 
 @dataclass
