@@ -104,8 +104,8 @@ def _digest(key: object) -> bytes:
 def store(kind: str, compiler: str) -> Store:
     """The store of one compiler (`compiler` names it whole: settings, versions), one per process."""
     stores = sys.modules.setdefault(_STORES, type(sys)(_STORES)).__dict__
-    name = hashlib.blake2b(f"{compiler}|{importlib.util.MAGIC_NUMBER.hex()}|{sys.version}".encode(),
-                           digest_size=12).hexdigest()
+    python = f"{importlib.util.MAGIC_NUMBER.hex()}|{sys.version}|{sys.flags.optimize}"  # -O drops asserts
+    name = hashlib.blake2b(f"{compiler}|{python}".encode(), digest_size=12).hexdigest()
     key = f"{kind}-{name}"
     if key not in stores:
         where = folder()

@@ -25,7 +25,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from support import ros1 as ros1_support  # noqa: E402
 from support import ros2 as ros2_support  # noqa: E402
-from support.generation import ROOT, generate, snapshot_template  # noqa: E402
+from support.generation import ROOT, copy_template, generate, snapshot_template  # noqa: E402
 from support.tiers import unavailable  # noqa: E402
 
 sys.path.insert(0, str(ROOT / "extensions"))
@@ -86,8 +86,15 @@ def template_dir(tmp_path_factory) -> Path:
     return snapshot_template(tmp_path_factory.mktemp("template"))
 
 
+@pytest.fixture(scope="session")
+def template_folder(tmp_path_factory) -> Path:
+    """The same template as a plain folder: Copier renders it in place instead of cloning a
+    repository for every package (for tests of the generated files, not of versions)."""
+    return copy_template(tmp_path_factory.mktemp("plain_template"))
+
+
 @pytest.fixture
-def make_package(template_dir, tmp_path):
+def make_package(template_folder, tmp_path):
     """Generate a package from answers; returns the destination folder.
 
     `name` names the destination folder, for the answers whose defaults come from it.
@@ -96,7 +103,7 @@ def make_package(template_dir, tmp_path):
 
     def make(answers: dict | None = None, name: str | None = None) -> Path:
         destination = tmp_path / (name or f"project{len(made)}")
-        generate(template_dir, destination, answers)
+        generate(template_folder, destination, answers)
         made.append(destination)
         return destination
 

@@ -46,9 +46,9 @@ def schema() -> dict:
     ({"ros_distro": "humble", "package_name": "rover"}, "ubuntu-22.04", "rover"),
     ({"ros_distro": "rolling", "build_type": "ament_cmake", "package_name": "rover"}, "ubuntu-24.04", "rover"),
 ])
-def test_a_ros2_workflow_builds_and_tests_the_packages_with_action_ros_ci(template_dir, tmp_path, schema, actionlint,
+def test_a_ros2_workflow_builds_and_tests_the_packages_with_action_ros_ci(template_folder, tmp_path, schema, actionlint,
                                                                           answers, runner, packages):
-    generate(template_dir, tmp_path / "out", {**answers, "ci_workflow": True})
+    generate(template_folder, tmp_path / "out", {**answers, "ci_workflow": True})
     assert actionlint(tmp_path / "out" / WORKFLOW) == []
     workflow = read_workflow(tmp_path / "out" / WORKFLOW)
     jsonschema.validate(workflow, schema)
@@ -60,8 +60,8 @@ def test_a_ros2_workflow_builds_and_tests_the_packages_with_action_ros_ci(templa
     assert steps["ros-tooling/action-ros-ci"] == {"package-name": packages, "target-ros2-distro": distro}
 
 
-def test_a_ros1_workflow_runs_industrial_ci(template_dir, tmp_path, schema, actionlint):
-    generate(template_dir, tmp_path / "out", {"ros_distro": "noetic", "ci_workflow": True})
+def test_a_ros1_workflow_runs_industrial_ci(template_folder, tmp_path, schema, actionlint):
+    generate(template_folder, tmp_path / "out", {"ros_distro": "noetic", "ci_workflow": True})
     assert actionlint(tmp_path / "out" / WORKFLOW) == []
     workflow = read_workflow(tmp_path / "out" / WORKFLOW)
     jsonschema.validate(workflow, schema)
@@ -75,8 +75,8 @@ def test_the_schema_refuses_a_job_github_would_refuse(schema):
         jsonschema.validate({"on": "push", "jobs": {"build": {"steps": [{"uses": "actions/checkout@v4"}]}}}, schema)
 
 
-def test_no_workflow_unless_asked(template_dir, tmp_path):
-    generate(template_dir, tmp_path / "out")
+def test_no_workflow_unless_asked(template_folder, tmp_path):
+    generate(template_folder, tmp_path / "out")
     assert not (tmp_path / "out" / ".github").exists()
 
 

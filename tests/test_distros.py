@@ -29,7 +29,7 @@ ANSWERS = {
 
 
 @pytest.fixture(scope="module")
-def packages(template_dir, tmp_path_factory) -> dict:
+def packages(template_folder, tmp_path_factory) -> dict:
     """The package generated once for each ROS 2 distro, with autostart where the distro has it."""
     made = {}
     for distro in ROS2_DISTROS:
@@ -37,7 +37,7 @@ def packages(template_dir, tmp_path_factory) -> dict:
         if distro in AUTOSTART_DISTROS:
             answers["nodes"] = [*ANSWERS["nodes"][:2], {**ANSWERS["nodes"][2], "autostart": True}]
         destination = tmp_path_factory.mktemp(distro)
-        generate(template_dir, destination, answers)
+        generate(template_folder, destination, answers)
         made[distro] = package_dir(destination)
     return made
 

@@ -9,9 +9,9 @@ from support.packages import dependencies, model_of, package_dir
 
 
 @pytest.mark.parametrize("name", examples())
-def test_example_generates_a_package(template_dir, tmp_path, name):
+def test_example_generates_a_package(template_folder, tmp_path, name):
     destination = tmp_path / name
-    generate(template_dir, destination, example(name))
+    generate(template_folder, destination, example(name))
     model = model_of(destination)
     assert dependencies(package_dir(destination) / "package.xml")
     for node in model.nodes:

@@ -26,16 +26,9 @@ from hypothesis import example, given
 from rna import build_package, distros
 from rna.parameters import INT_RANGES
 from rna.update import resolve
-from support.generation import copy_template
 from support.launch_files import description, expected_description
 from support.packages import table_rows_of_wrong_width
 from support.strategies import invalid_answers, read_data_file, valid_answers, write_data_file
-
-
-@pytest.fixture(scope="module")
-def template(tmp_path_factory) -> Path:
-    """The template as a plain folder: Copier renders it in place, without cloning a repository each time."""
-    return copy_template(tmp_path_factory.mktemp("plain_template"))
 
 
 def copy(template: Path, destination: Path, answers: dict) -> None:
@@ -47,12 +40,12 @@ def copy(template: Path, destination: Path, answers: dict) -> None:
 # ----------------------------------------------------------------------------- invalid answers
 
 @given(invalid_answers())
-def test_an_invalid_answer_set_is_refused_with_one_line_naming_the_question(template, case):
+def test_an_invalid_answer_set_is_refused_with_one_line_naming_the_question(template_folder, case):
     answers, question = case
     with tempfile.TemporaryDirectory() as scratch:
         destination = Path(scratch) / "out"
         with pytest.raises(UserMessageError) as refused:
-            copy(template, destination, answers)
+            copy(template_folder, destination, answers)
         message = str(refused.value)
         assert "\n" not in message
         assert message.startswith(f"rna-template: invalid answer to '{question}': "), message
@@ -96,13 +89,13 @@ def edges(distro: str, build_type: str, language: str) -> dict:
 @example(edges("jazzy", "ament_cmake", "cpp"))
 @example(edges("noetic", "catkin", "python"))
 @example(edges("noetic", "catkin", "cpp"))
-def test_a_valid_answer_set_gives_files_that_read_back(template, answers):
+def test_a_valid_answer_set_gives_files_that_read_back(template_folder, answers):
     answers = dict(answers)
     expected = answers.pop("_expected")
     model = build_package(answers)
     with tempfile.TemporaryDirectory() as scratch:
         destination = Path(scratch) / "out"
-        copy(template, destination, answers)
+        copy(template_folder, destination, answers)
         package = destination / model.name
         files = [path for path in destination.rglob("*") if path.is_file()]
         # The answers file is what `copier update` starts from: it must give the same package.

@@ -74,9 +74,9 @@ def test_interfaces_show_their_parts():
     assert ("`tracker_interfaces/srv/SetTarget`", "`Target target` --- `bool accepted`") in rows
 
 
-def test_the_generated_readme_shows_the_graph_and_the_tables(template_dir, tmp_path):
+def test_the_generated_readme_shows_the_graph_and_the_tables(template_folder, tmp_path):
     destination = tmp_path / "out"
-    generate(template_dir, destination, example("tracker"))
+    generate(template_folder, destination, example("tracker"))
     text = (destination / "README.md").read_text()
     assert "```mermaid\nflowchart LR\n" in text
     assert "### mover\n\n| Through | Name | Type | QoS |" in text

@@ -48,9 +48,9 @@ def copier_copy(template: Path, destination: Path, *args: str) -> subprocess.Com
         (["--data", "nodes=[{name: t, publishers: ['v:geometry_msgs/msg/Twst']}]"], "did you mean Twist?"),
     ],
 )
-def test_bad_answers_give_one_line_and_write_nothing(template_dir, tmp_path, args, message):
+def test_bad_answers_give_one_line_and_write_nothing(template_folder, tmp_path, args, message):
     destination = tmp_path / "out"
-    result = copier_copy(template_dir, destination, *args)
+    result = copier_copy(template_folder, destination, *args)
     assert result.returncode == 1
     assert "Traceback" not in result.stderr
     errors = [line for line in result.stderr.splitlines() if "invalid answer" in line]
@@ -58,13 +58,13 @@ def test_bad_answers_give_one_line_and_write_nothing(template_dir, tmp_path, arg
     assert not destination.exists()
 
 
-def test_bad_answers_leave_an_existing_folder_untouched(template_dir, tmp_path):
+def test_bad_answers_leave_an_existing_folder_untouched(template_folder, tmp_path):
     destination = tmp_path / "existing"
     destination.mkdir()
     (destination / "notes.txt").write_text("mine\n")
     data = tmp_path / "bad.yml"
     data.write_text(yaml.safe_dump({"package_name": "ok_name", "nodes": [{"name": "a", "timers": [0]}]}))
-    result = copier_copy(template_dir, destination, "--data-file", str(data))
+    result = copier_copy(template_folder, destination, "--data-file", str(data))
     assert result.returncode == 1, result.stderr
     assert "invalid answer to 'nodes': node 'a': timer 'timer': period must be more than 0 s" in result.stderr
     assert [p.name for p in destination.iterdir()] == ["notes.txt"]
@@ -96,6 +96,7 @@ def terminal(template_dir, tmp_path):
     env = {**os.environ, "TERM": "xterm", "PROMPT_TOOLKIT_NO_CPR": "1"}
     child = pexpect.spawn(COPIER, ["copy", "--trust", "--vcs-ref=HEAD", str(template_dir), str(tmp_path / "mover")],
                           env=env, encoding="utf-8", timeout=30, dimensions=(50, 200))
+    child.delaybeforesend = None  # each key is sent once its prompt is drawn (support/terminal.py)
     child.logfile_read = (tmp_path / "terminal.log").open("w")
     yield child
     child.close(force=True)
@@ -159,6 +160,7 @@ def test_interfaces_in_the_workspace_are_offered(template_dir, tmp_path):
     child = pexpect.spawn(COPIER, ["copy", "--trust", "--vcs-ref=HEAD", str(template_dir),
                                    str(tmp_path / "ws" / "src" / "planner")],
                           env=env, encoding="utf-8", timeout=30, dimensions=(50, 250))
+    child.delaybeforesend = None
     child.logfile_read = (tmp_path / "terminal.log").open("w")
     try:
         for prompt in ("Package name", "full name", "e-mail", "License", "Copyright holder", "ROS distribution",

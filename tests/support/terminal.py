@@ -28,6 +28,9 @@ class Terminal:
         self.child = pexpect.spawn(COPIER, args, env=env, encoding="utf-8", timeout=30, dimensions=(24, 80),
                                    cwd=str(cwd) if cwd else None)
         self.child.logfile_read = self
+        # Keys are sent once their prompt is drawn (expect first), so pexpect's default pause
+        # before each send, meant for programs that drop early typing, only adds up.
+        self.child.delaybeforesend = None
 
     def write(self, data: str) -> None:
         self.log.write(data)
