@@ -49,17 +49,31 @@ settings.register_profile("ci", parent=settings.get_profile("fast"), max_example
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci" if os.environ.get("CI") == "true" else "fast"))
 
 
-# Session fixtures that build something large: with pytest-xdist each worker would build
-# its own, so the tests that use one are kept on one worker (`--dist loadgroup`, as .ci/run
-# runs; other tests go wherever a worker is free).
-SHARED_BUILDS = ("workspaces", "catkin_ws", "example_packages")
+# Fixtures that build something large once: with pytest-xdist each worker would build its
+# own, so the tests that use one are kept on one worker (`--dist loadgroup`, as .ci/run
+# runs; other tests go wherever a worker is free). `workspaces` builds one per ROS 2
+# distro: a distro's tests are a group, so two distros can build at once.
+SHARED_BUILDS = ("workspaces", "catkin_ws", "example_packages", "colcon_tested", "catkin_tested")
 
 
+def build_group(item) -> str | None:
+    """The xdist group of a test that uses a shared build, or None."""
+    used = [name for name in SHARED_BUILDS if name in getattr(item, "fixturenames", ())]
+    if not used:
+        return None
+    group = f"{item.path.stem}:{used[0]}"
+    if used[0] == "workspaces":
+        params = getattr(getattr(item, "callspec", None), "params", {})
+        group += f":{params.get('workspace', ros2_support.DEFAULT_DISTRO)}"
+    return group
+
+
+@pytest.hookimpl(tryfirst=True)  # pytest-xdist reads the marks in its own hook
 def pytest_collection_modifyitems(config, items):
     for item in items:
-        used = [name for name in SHARED_BUILDS if name in getattr(item, "fixturenames", ())]
-        if used:
-            item.add_marker(pytest.mark.xdist_group(f"{item.path.stem}:{used[0]}"))
+        group = build_group(item)
+        if group is not None:
+            item.add_marker(pytest.mark.xdist_group(group))
 
 
 def pytest_configure(config):
