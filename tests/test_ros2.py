@@ -291,19 +291,33 @@ def test_lifecycle_node_publishes_once_activated(workspace):
 @pytest.mark.parametrize("transitions", [(), ("configure",), ("configure", "activate")],
                          ids=["unconfigured", "inactive", "active"])
 def test_lifecycle_node_stopped_by_sigint_shuts_down_through_its_lifecycle(workspace, package, transitions):
-    """Ctrl-C in any primary state: the node is finalized (seen from another process), exits 0, says nothing."""
+    """Ctrl-C in any primary state: the node is finalized (seen from another process), exits 0, says nothing.
+
+    The node publishes its last transition event and exits at once; Fast DDS delivers a
+    reliable sample only while its writer lives, so on a loaded machine that event can be
+    lost in transit (1 run in 80 with both cores busy, none in 80 idle). Such a run, with
+    the shutdown seen starting and no error, is warned about and run once more.
+    """
     state = transitions[-1] if transitions else "unconfigured"
-    with started(workspace.node(package, "beacon", log=f"{package}_beacon_sigint_{state}")) as (beacon,):
-        if transitions:
-            workspace.probe("lifecycle", "beacon", *transitions)
-        watcher = NodeProcess([str(workspace.ros2.python), str(PROBE), "transitions", "beacon"], env=workspace.env,
-                              log_path=workspace.logs / f"{package}_beacon_watch_{state}.log")
-        with started(watcher):
-            watcher.wait_for("watching")
-            assert_clean_exit(beacon, beacon.interrupt())
-            assert watcher.wait() == 0, watcher.output
-        assert "beacon: shuttingdown -> finalized" in watcher.output
+    for attempt in (1, 2):
+        with started(workspace.node(package, "beacon", log=f"{package}_beacon_sigint_{state}_{attempt}")) as (beacon,):
+            if transitions:
+                workspace.probe("lifecycle", "beacon", *transitions)
+            watcher = NodeProcess([str(workspace.ros2.python), str(PROBE), "transitions", "beacon"], env=workspace.env,
+                                  log_path=workspace.logs / f"{package}_beacon_watch_{state}_{attempt}.log")
+            with started(watcher):
+                watcher.wait_for("watching")
+                assert_clean_exit(beacon, beacon.interrupt())
+                watched = watcher.wait()
         assert not re.search(r"\[(WARN|ERROR)\]", beacon.output), beacon.output
+        lost_in_transit = (watched != 0 and re.search(r"beacon: \w+ -> shuttingdown", watcher.output)
+                           and "errorprocessing" not in watcher.output)
+        if attempt == 2 or not lost_in_transit:
+            break
+        warnings.warn(f"{package} on {workspace.ros2.distro}: the finalized event was not seen, the shutdown "
+                      f"was: run again\n{watcher.output}", stacklevel=1)
+    assert watched == 0, watcher.output
+    assert "beacon: shuttingdown -> finalized" in watcher.output
 
 
 @pytest.mark.parametrize(("workspace", "package"), [(MAIN_DISTRO, "stoppable"),
