@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import os
 import shutil
 import subprocess
 import sys
@@ -12,6 +11,7 @@ import pexpect
 import pytest
 import yaml
 from support.generation import FIXED_ANSWERS, answers_of
+from support.terminal import spawn_copier
 
 COPIER = str(Path(sys.executable).with_name("copier"))
 
@@ -92,11 +92,7 @@ DOWN = "\x1b[B"
 @pytest.fixture
 def terminal(template_dir, tmp_path):
     """Start `copier copy` in a pseudo-terminal, as a person would."""
-    # No cursor-position requests: pexpect does not answer them, and each would wait.
-    env = {**os.environ, "TERM": "xterm", "PROMPT_TOOLKIT_NO_CPR": "1"}
-    child = pexpect.spawn(COPIER, ["copy", "--trust", "--vcs-ref=HEAD", str(template_dir), str(tmp_path / "mover")],
-                          env=env, encoding="utf-8", timeout=30, dimensions=(50, 200))
-    child.delaybeforesend = None  # each key is sent once its prompt is drawn (support/terminal.py)
+    child = spawn_copier(["copy", "--trust", "--vcs-ref=HEAD", str(template_dir), str(tmp_path / "mover")], (50, 200))
     child.logfile_read = (tmp_path / "terminal.log").open("w")
     yield child
     child.close(force=True)
@@ -156,11 +152,8 @@ def test_interfaces_in_the_workspace_are_offered(template_dir, tmp_path):
     (existing / "msg").mkdir(parents=True)
     (existing / "package.xml").write_text("<package format='3'><name>nav_interfaces</name></package>")
     (existing / "msg" / "Goal.msg").write_text("float64 x\n")
-    env = {**os.environ, "TERM": "xterm", "PROMPT_TOOLKIT_NO_CPR": "1"}
-    child = pexpect.spawn(COPIER, ["copy", "--trust", "--vcs-ref=HEAD", str(template_dir),
-                                   str(tmp_path / "ws" / "src" / "planner")],
-                          env=env, encoding="utf-8", timeout=30, dimensions=(50, 250))
-    child.delaybeforesend = None
+    child = spawn_copier(["copy", "--trust", "--vcs-ref=HEAD", str(template_dir),
+                          str(tmp_path / "ws" / "src" / "planner")], (50, 250))
     child.logfile_read = (tmp_path / "terminal.log").open("w")
     try:
         for prompt in ("Package name", "full name", "e-mail", "License", "Copyright holder", "ROS distribution",

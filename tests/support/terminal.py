@@ -15,6 +15,19 @@ COPIER = str(Path(sys.executable).with_name("copier"))
 WIDTH = 79  # the widest line an 80-column terminal shows without wrapping it
 
 
+def spawn_copier(args: list[str], dimensions: tuple[int, int], cwd: Path | None = None,
+                 env: dict | None = None) -> pexpect.spawn:
+    """`copier <args>` in a pseudo-terminal of `dimensions` (rows, columns), as a person starts it."""
+    # No cursor-position requests: pexpect does not answer them, and each would wait.
+    env = {**os.environ, **(env or {}), "TERM": "xterm", "PROMPT_TOOLKIT_NO_CPR": "1"}
+    child = pexpect.spawn(COPIER, args, env=env, encoding="utf-8", timeout=30, dimensions=dimensions,
+                          cwd=str(cwd) if cwd else None)
+    # Keys are sent once their prompt is drawn (expect first), so pexpect's default pause
+    # before each send, meant for programs that drop early typing, only adds up.
+    child.delaybeforesend = None
+    return child
+
+
 class Terminal:
     """An 80x24 terminal that `copier <args>` draws on; `wide_rows` keeps every row drawn wider than WIDTH."""
 
@@ -23,14 +36,8 @@ class Terminal:
         self.stream = pyte.Stream(self.screen)
         self.log = log.open("w")
         self.wide_rows: list[str] = []
-        # No cursor-position requests: pexpect does not answer them, and each would wait.
-        env = {**os.environ, **(env or {}), "TERM": "xterm", "PROMPT_TOOLKIT_NO_CPR": "1"}
-        self.child = pexpect.spawn(COPIER, args, env=env, encoding="utf-8", timeout=30, dimensions=(24, 80),
-                                   cwd=str(cwd) if cwd else None)
+        self.child = spawn_copier(args, (24, 80), cwd, env)
         self.child.logfile_read = self
-        # Keys are sent once their prompt is drawn (expect first), so pexpect's default pause
-        # before each send, meant for programs that drop early typing, only adds up.
-        self.child.delaybeforesend = None
 
     def write(self, data: str) -> None:
         self.log.write(data)
