@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import functools
 import os
+import shutil
 import sys
 from pathlib import Path
 
@@ -25,10 +26,15 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from support import ros1 as ros1_support  # noqa: E402
 from support import ros2 as ros2_support  # noqa: E402
+from support import scratch  # noqa: E402
 from support.generation import ROOT, copy_template, generate, snapshot_template  # noqa: E402
 from support.tiers import unavailable  # noqa: E402
 
 sys.path.insert(0, str(ROOT / "extensions"))
+
+# Set before pytest makes its base folder and pytest-xdist starts its workers, which
+# inherit it; None in the workers (TMPDIR is set by then) and where memory has no room.
+SCRATCH = scratch.use_memory_for_scratch()
 
 
 # Hypothesis (test_generative.py): the fast tier draws a few answer sets, the same ones on
@@ -80,6 +86,15 @@ def pytest_configure(config):
     config.addinivalue_line("markers", "ros: builds and runs generated ROS 2 packages (PyPI wheels)")
     config.addinivalue_line("markers", "ros1: builds and runs generated ROS 1 packages (Debian)")
     config.addinivalue_line("markers", "update: copier update flows and merge-safety scenarios")
+
+
+def pytest_sessionfinish(session, exitstatus):
+    """A passing run's scratch files leave memory (pytest would keep them, as it keeps its last three runs')."""
+    if SCRATCH is None or exitstatus != 0 or hasattr(session.config, "workerinput"):
+        return
+    basetemp = session.config._tmp_path_factory.getbasetemp()  # the tmp_path_factory fixture's
+    if basetemp.is_relative_to(SCRATCH):
+        shutil.rmtree(basetemp, ignore_errors=True)
 
 
 def pytest_terminal_summary(terminalreporter):

@@ -29,21 +29,30 @@ def spawn_copier(args: list[str], dimensions: tuple[int, int], cwd: Path | None 
 
 
 class Terminal:
-    """An 80x24 terminal that `copier <args>` draws on; `wide_rows` keeps every row drawn wider than WIDTH."""
+    """An 80x24 terminal that `copier <args>` draws on; `wide_rows` keeps every row drawn wider than
+    WIDTH until Copier runs the template's tasks (it prints their command, with its clone's
+    path in TMPDIR, which may be as long as any)."""
 
     def __init__(self, args: list[str], log: Path, cwd: Path | None = None, env: dict | None = None):
         self.screen = pyte.Screen(80, 24)
         self.stream = pyte.Stream(self.screen)
         self.log = log.open("w")
         self.wide_rows: list[str] = []
+        self.tasks_started = False
         self.child = spawn_copier(args, (24, 80), cwd, env)
         self.child.logfile_read = self
 
     def write(self, data: str) -> None:
         self.log.write(data)
         self.stream.feed(data)
+        if self.tasks_started:
+            return
+        rows = self.rows()
+        tasks = next((index for index, row in enumerate(rows) if row.startswith(" > Running task")), None)
+        if tasks is not None:
+            self.tasks_started, rows = True, rows[:tasks]
         # A row that fills the terminal is a line the terminal wrapped (or one that just fits).
-        self.wide_rows.extend(row.rstrip() for row in self.screen.display if wcswidth(row.rstrip()) > WIDTH)
+        self.wide_rows.extend(row for row in rows if wcswidth(row) > WIDTH)
 
     def flush(self) -> None:
         self.log.flush()
