@@ -539,7 +539,8 @@ def _refuse_switch(previous: Mapping, answers: Mapping) -> None:
 def _refuse_hand_edited_answers(context) -> None:
     """An update of an answers file edited by hand would change nothing: stop first."""
     conf = context.get("_copier_conf") or {}
-    if str(context.get("_copier_operation")) != "update" or conf.get("dst_path") is None:
+    if str(context.get("_copier_operation")) != "update" or conf.get("dst_path") is None \
+            or _copiers_scratch(str(conf["dst_path"])):
         return
     path = Path(conf["dst_path"], conf.get("answers_file") or ".copier-answers.yml")
     try:
@@ -561,7 +562,7 @@ def _edited_by_hand(path: str, _mtime_ns: int, _size: int) -> bool:
 def _previous_answers(context) -> dict | None:
     """The answers being updated: the answers file already in the destination, if any."""
     conf = context.get("_copier_conf") or {}
-    if conf.get("dst_path") is None or conf.get("answers_file") is None:
+    if conf.get("dst_path") is None or conf.get("answers_file") is None or _copiers_scratch(str(conf["dst_path"])):
         return None
     path = Path(conf["dst_path"], conf["answers_file"])
     try:
@@ -569,6 +570,17 @@ def _previous_answers(context) -> dict | None:
     except OSError:
         return None
     return _answers_file(str(path), stat.st_mtime_ns, stat.st_size)
+
+
+@functools.lru_cache(maxsize=8)
+def _copiers_scratch(destination: str) -> bool:
+    """Whether Copier renders the old or the new version into a scratch folder of its update.
+
+    The answers file that appears there halfway through the render is that render's own,
+    not answers being updated nor edited by hand: reading it (with PyYAML's Python parser,
+    at every file after it) only made a second model of the same answers.
+    """
+    return rna.update.kept.kind_of(Path(destination)) is not None
 
 
 @functools.lru_cache(maxsize=8)
