@@ -21,7 +21,8 @@ run, no warm-up):
   node      one C++ node with every feature vs ros2-pkg-create 1.3.0 (own venv, cached;
             its older Copier's floor is measured too)
   scale     packages with 1, 10, 50 and 100 nodes
-  update    `copier update` adding a node to a 20-node ament_cmake package vs copying it
+  update    `copier update` adding a node to a 20-node ament_cmake package vs copying it,
+            and Copier's own update and copy of a one-file template (the update's floor)
   catkin    the same for a 20-node catkin (noetic) package
 
 The template keeps compiled code between runs (extensions/code_cache.py): here in the
@@ -105,6 +106,9 @@ PEER_ARGS = ["--defaults", "--use-local-templates", "--template", "ros2_cpp_pkg"
 
 FLOOR_FILES = {"copier.yml": "_subdirectory: template\nname:\n  type: str\n  default: demo\n",
                "template/README.md.jinja": "# {{ name }}\n"}
+# The floor of an update: the same, recording its answers (Copier updates only such a project).
+FLOOR_UPDATE_FILES = {**FLOOR_FILES,
+                      "template/{{ _copier_conf.answers_file }}.jinja": "{{ _copier_answers|to_nice_yaml }}\n"}
 UPDATE_NODES = 20
 
 # ─── Measuring one process ────────────────────────────────────────────────────
@@ -195,6 +199,8 @@ COMPARISONS = (
     Comparison("100 nodes / 1 node", "nodes_100", "nodes_1"),
     Comparison("update +1 node / copy, 20-node ament_cmake", "update_20", "copy_20", 3.0),
     Comparison("update +1 node / copy, 20-node catkin", "update_20_catkin", "copy_20_catkin", 3.0),
+    Comparison("Copier's own: update / copy, one-file template (its floor)", "floor_update", "floor_copy"),
+    Comparison("update +1 node, 20-node ament_cmake / Copier's own update", "update_20", "floor_update"),
 )
 GROUPS = ("default", "node", "scale", "update", "catkin")  # CASE_GROUPS names their cases
 
@@ -211,7 +217,7 @@ class Bench:
         (work / "copier-settings.yml").write_text("{}\n")
         self.copier = str(Path(sys.executable).with_name("copier"))
         self.template = self._template_repo(template_source)
-        self.floor = self._floor_repo()
+        self.floor = self._floor_repo("floor", FLOOR_FILES)
         self.data = work / "data"
         self.data.mkdir()
         self.peer: Path | None = None
@@ -227,6 +233,10 @@ class Bench:
                 destination = work / f"base-{group}" / "project"
                 self.bases[group] = generate_project(self.template, destination, scaled_package(UPDATE_NODES, ros1),
                                                      vcs_ref=NEW_VERSION)
+        if "update" in groups:
+            self.floor_for_update = self._floor_repo("floor-update", FLOOR_UPDATE_FILES)
+            self.bases["floor"] = generate_project(self.floor_for_update, work / "base-floor" / "project",
+                                                   {"name": "demo"}, vcs_ref="v1.0.0")
 
     def fill_code_cache(self) -> None:
         """One copy not measured, so that the cases find the template's compiled code kept, as
@@ -248,18 +258,18 @@ class Bench:
         commit_repository(destination, f"rna-template {NEW_VERSION} (benchmark snapshot)", NEW_VERSION)
         return destination
 
-    def _floor_repo(self) -> Path:
-        destination = self.work / "floor"
-        for name, text in FLOOR_FILES.items():
-            (destination / name).parent.mkdir(parents=True, exist_ok=True)
-            (destination / name).write_text(text)
-        shutil.copytree(destination, self.work / "floor-folder")  # the same, without git
+    def _floor_repo(self, name: str, files: dict[str, str]) -> Path:
+        destination = self.work / name
+        for path, text in files.items():
+            (destination / path).parent.mkdir(parents=True, exist_ok=True)
+            (destination / path).write_text(text)
+        shutil.copytree(destination, self.work / f"{name}-folder")  # the same, without git
         commit_repository(destination, "one-file template", "v1.0.0")
         return destination
 
-    def data_file(self, name: str, answers: dict) -> Path:
+    def data_file(self, name: str, answers: dict, fixed: bool = True) -> Path:
         path = self.data / f"{name}.yml"
-        path.write_text(yaml.safe_dump({**FIXED_ANSWERS, **answers}, sort_keys=False))
+        path.write_text(yaml.safe_dump({**(FIXED_ANSWERS if fixed else {}), **answers}, sort_keys=False))
         return path
 
     def copy(self, template: Path, data: Path, copier: str | None = None):
@@ -299,6 +309,14 @@ class Bench:
                      self.copy(self.floor, floor_data, peer_copier), "project/README.md"),
                 Case("floor_peer_dir", "node", "the same, from a folder (as ros2-pkg-create runs)",
                      self.copy(self.work / "floor-folder", floor_data, peer_copier), "project/README.md"),
+            ]
+        if "floor" in self.bases:
+            cases += [
+                Case("floor_copy", "update", "copy: one-file template recording its answers",
+                     self.copy(self.floor_for_update, floor_data), "project/.copier-answers.yml"),
+                Case("floor_update", "update", "update: the same, one answer changed",
+                     self.update("floor", self.data_file("floor_update", {"name": "changed"}, fixed=False)),
+                     "project/README.md"),
             ]
         for count in (1, 10, 50, 100):
             cases.append(Case(f"nodes_{count}", "scale", f"ament_cmake package, {count} node(s)",
@@ -508,7 +526,7 @@ CASE_GROUPS = {
     "default": ("floor", "default", "default_cold"),
     "node": ("node_all", "ros2_pkg_create", "floor_peer_git", "floor_peer_dir"),
     "scale": ("nodes_1", "nodes_10", "nodes_50", "nodes_100"),
-    "update": ("copy_20", "update_20"),
+    "update": ("copy_20", "update_20", "floor_copy", "floor_update"),
     "catkin": ("copy_20_catkin", "update_20_catkin"),
 }
 
