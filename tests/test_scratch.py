@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import tempfile
 from pathlib import Path
 
 import pytest
@@ -47,3 +48,28 @@ def test_memory_without_room_is_not_used(memory):
 
 def test_no_memory_folder_leaves_the_disk(tmp_path):
     assert scratch.memory_scratch(tmp_path / "missing", environ={}) is None
+
+
+def test_a_folder_of_that_name_that_is_not_private_is_passed_over(monkeypatch, tmp_path):
+    folder = tmp_path / "elsewhere"
+    folder.mkdir(mode=0o755)
+    monkeypatch.setattr(scratch, "memory_scratch", lambda: folder)
+    monkeypatch.setenv("TMPDIR", "")  # recorded, so that what the test sets is undone
+    monkeypatch.delenv("TMPDIR")
+    assert scratch.use_memory_for_scratch() is None
+    link = tmp_path / "link"
+    link.symlink_to(tmp_path)
+    monkeypatch.setattr(scratch, "memory_scratch", lambda: link)
+    assert scratch.use_memory_for_scratch() is None
+    assert "TMPDIR" not in os.environ
+
+
+def test_a_private_folder_becomes_tmpdir(monkeypatch, tmp_path):
+    folder = tmp_path / "private"
+    monkeypatch.setattr(scratch, "memory_scratch", lambda: folder)
+    monkeypatch.setenv("TMPDIR", "")  # recorded, so that what the test sets is undone
+    monkeypatch.delenv("TMPDIR")
+    monkeypatch.setattr(scratch.tempfile, "tempdir", None)
+    assert scratch.use_memory_for_scratch() == folder
+    assert os.environ["TMPDIR"] == str(folder)
+    assert tempfile.gettempdir() == str(folder)

@@ -10,6 +10,7 @@ A run writes about 300 MB there; conftest.py removes them when the run passes.
 from __future__ import annotations
 
 import os
+import stat
 import sys
 import tempfile
 from pathlib import Path
@@ -42,10 +43,11 @@ def use_memory_for_scratch() -> Path | None:
         return None
     try:
         folder.mkdir(mode=0o700, exist_ok=True)
+        found = folder.lstat()
     except OSError:
         return None
-    if folder.stat().st_uid != os.getuid() or not os.access(folder, os.W_OK | os.X_OK):
-        return None  # someone else's folder of that name: stay on disk
+    if not stat.S_ISDIR(found.st_mode) or found.st_uid != os.getuid() or found.st_mode & 0o077:
+        return None  # not a private folder of this user's (a link, someone else's): stay on disk
     os.environ["TMPDIR"] = str(folder)
     tempfile.tempdir = None  # read TMPDIR again
     return folder
