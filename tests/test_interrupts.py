@@ -22,10 +22,18 @@ def test_a_run_stuck_creating_an_entity_in_the_middleware_is_told_apart():
     # CI, 2026-11-26: a publisher's teardown inside try_shutdown (rclpy/publisher.py destroy).
     assert stuck_in_middleware(dump(f"{SITE}/rclpy/publisher.py:destroy", f"{SITE}/rclpy/node.py:destroy_publisher",
                                     f"{SITE}/rclpy/context.py:_cleanup"))
+    # CI, 2026-11-27: an action client being created (its constructor calls rcl_action).
+    assert stuck_in_middleware(dump(f"{SITE}/rclpy/action/client.py:__init__",
+                                    "/ws/install/pkg/client_base.py:__init__", "/ws/install/pkg/client.py:main"))
+    assert stuck_in_middleware(dump(f"{SITE}/rclpy/action/server.py:__init__",
+                                    "/ws/install/pkg/server_base.py:__init__"))
 
 
 def test_a_run_stuck_anywhere_else_is_a_failure():
     assert not stuck_in_middleware(dump("/ws/install/pkg/talker.py:on_timer", f"{SITE}/rclpy/executors.py:spin"))
+    assert not stuck_in_middleware(dump(f"{SITE}/rclpy/action/client.py:send_goal_async",
+                                        "/ws/install/pkg/client.py:main"))
+    assert not stuck_in_middleware(dump("/ws/install/pkg/client_base.py:__init__", "/ws/install/pkg/client.py:main"))
     assert not stuck_in_middleware(dump(f"{SITE}/rclpy/executors.py:_wait_for_ready_callbacks"))
     assert not stuck_in_middleware("still starting, printed nothing")
 

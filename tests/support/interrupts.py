@@ -50,6 +50,10 @@ def unclean(output: str) -> str | None:
 FAULTHANDLER_ENV = {"PYTHONFAULTHANDLER": "1"}
 MIDDLEWARE_CALLS = ("create_publisher", "create_subscription", "create_service", "create_client",
                     "_logging_fini", "destroy_node", "destroy")  # destroy: an entity's own teardown
+# An action client or server is created by its constructor's one call into rcl_action,
+# which makes its services and topics in the middleware (CI, 2026-11-27: a client stuck
+# there after a SIGINT 0.15 s into its start-up, 1 run in 100).
+ACTION_CONSTRUCTORS = ("/rclpy/action/client.py", "/rclpy/action/server.py")
 INNERMOST_FRAME = re.compile(r"^(?:Current thread|Thread) 0x[0-9a-f]+ \(most recent call first\):\n"
                              r"  File \"(?P<file>[^\"]+)\", line \d+ in (?P<function>\w+)", re.MULTILINE)
 LATEST = 1.5  # seconds: by then the runs are exchanging messages, calls and goals
@@ -135,7 +139,8 @@ def _dump_stacks(run: Run) -> None:
 
 def stuck_in_middleware(output: str) -> bool:
     """Whether a thread's innermost Python frame is rclpy calling into the middleware."""
-    return any("/rclpy/" in frame["file"] and frame["function"] in MIDDLEWARE_CALLS
+    return any(("/rclpy/" in frame["file"] and frame["function"] in MIDDLEWARE_CALLS)
+               or (frame["file"].endswith(ACTION_CONSTRUCTORS) and frame["function"] == "__init__")
                for frame in INNERMOST_FRAME.finditer(output))
 
 
