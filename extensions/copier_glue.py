@@ -552,11 +552,9 @@ def _refuse_hand_edited_answers(context) -> None:
 
 
 @functools.lru_cache(maxsize=8)
-def _edited_by_hand(path: str, _mtime_ns: int, _size: int) -> bool:
-    try:
-        return rna.update.resolve.edited_by_hand(Path(path).read_text(encoding="utf-8")) is True
-    except OSError:
-        return False
+def _edited_by_hand(path: str, mtime_ns: int, size: int) -> bool:
+    read = _answers_file(path, mtime_ns, size)
+    return read is not None and rna.update.resolve.edited_by_hand(*read) is True
 
 
 def _previous_answers(context) -> dict | None:
@@ -569,7 +567,8 @@ def _previous_answers(context) -> dict | None:
         stat = path.stat()
     except OSError:
         return None
-    return _answers_file(str(path), stat.st_mtime_ns, stat.st_size)
+    read = _answers_file(str(path), stat.st_mtime_ns, stat.st_size)
+    return read[1] if read is not None and isinstance(read[1], dict) else None
 
 
 @functools.lru_cache(maxsize=8)
@@ -584,13 +583,18 @@ def _copiers_scratch(destination: str) -> bool:
 
 
 @functools.lru_cache(maxsize=8)
-def _answers_file(path: str, _mtime_ns: int, _size: int) -> dict | None:
-    """An answers file's content, read once per version of the file (the hook runs per file)."""
+def _answers_file(path: str, _mtime_ns: int, _size: int) -> tuple[str, object] | None:
+    """An answers file's text and what it reads as (None when it does not read as YAML), read
+    once per version of the file: the hook runs for every file, and both the answers being
+    updated and the hand-edit check need it (PyYAML's Python parser, as Copier reads it)."""
     try:
-        previous = yaml.safe_load(Path(path).read_text())
-    except (OSError, yaml.YAMLError):
+        text = Path(path).read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):
         return None
-    return previous if isinstance(previous, dict) else None
+    try:
+        return text, yaml.safe_load(text)
+    except yaml.YAMLError:
+        return text, None
 
 
 _checked: set[bytes | str] = set()

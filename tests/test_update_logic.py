@@ -193,6 +193,9 @@ def test_an_answers_file_edited_by_hand_is_told_from_one_copier_wrote():
     assert resolve.edited_by_hand(text.replace("robot\n", "robot\ninterfaces: {}\n", 1)) is True
     assert resolve.edited_by_hand(ANSWERS_TEXT.replace("# rna-template checksum", "# other")) is None  # 0.2.0
     assert resolve.edited_by_hand("nodes: [") is None
+    edited = text.replace("Drives the robot", "Drives the rover")  # read by the caller already
+    assert resolve.edited_by_hand(edited, yaml.safe_load(edited)) is True
+    assert resolve.edited_by_hand(text, yaml.safe_load(text)) is False
 
 
 def test_a_hand_edited_answers_file_is_refused_with_the_safe_way():

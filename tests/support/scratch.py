@@ -3,7 +3,7 @@
 The suite writes tens of thousands of small files (packages, Copier's clones of the
 template, colcon and catkin builds). On a virtual machine's disk each costs about
 0.7 ms of system time: a run of the whole suite spent 5.6 of its 20 CPU-minutes in the
-kernel on disk, 2.6 with its scratch in /dev/shm (docs/pages/reference/performance.md).
+kernel on disk, 2.6 to 3 with its scratch in /dev/shm (docs/pages/reference/performance.md).
 A run writes about 300 MB there; conftest.py removes them when the run passes.
 """
 
@@ -16,14 +16,14 @@ import tempfile
 from pathlib import Path
 
 MEMORY = Path("/dev/shm")
-ROOM_NEEDED = 4 * 2**30  # bytes: a run's peak, pip unpacking a ROS distro's wheels included, many times over
+ROOM_NEEDED = 4 * 2**30  # bytes: a run's 300 MB, and pip unpacking ROS 2's wheels (300 MB a distro), many times over
 
 
 def memory_scratch(memory: Path = MEMORY, environ: os._Environ | dict = os.environ) -> Path | None:
     """The folder in memory to use for scratch files, or None to leave TMPDIR as it is.
 
-    None when TMPDIR is already chosen, or memory is not a tmpfs that has the room and
-    lets programs run from it (colcon and catkin run what they build).
+    None when TMPDIR is already chosen, or when memory lacks the room or does not let
+    programs run from it (colcon and catkin run what they build).
     """
     if environ.get("TMPDIR") or not sys.platform.startswith("linux"):
         return None

@@ -102,18 +102,22 @@ def checksum(answers: Mapping) -> str:
     return hashlib.sha256(text.encode("utf-8")).hexdigest()[:16]
 
 
-def edited_by_hand(text: str) -> bool | None:
+def edited_by_hand(text: str, answers: object = None) -> bool | None:
     """Whether an answers file's answers differ from those its checksum was made of.
 
     None when it cannot tell: no checksum (written by 0.2.0 or older) or no YAML mapping.
-    Layout and comments do not count; only the answers they read as.
+    Layout and comments do not count; only the answers they read as (`answers`, when the
+    caller has read `text` already).
     """
     found = _CHECKSUM.search(text)
-    try:
-        answers = yaml.safe_load(text)
-    except yaml.YAMLError:
+    if found is None:
         return None
-    if found is None or not isinstance(answers, dict):
+    if answers is None:
+        try:
+            answers = yaml.safe_load(text)
+        except yaml.YAMLError:
+            return None
+    if not isinstance(answers, dict):
         return None
     return checksum(answers) != found.group(1)
 
