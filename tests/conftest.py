@@ -33,8 +33,8 @@ from support.tiers import unavailable  # noqa: E402
 sys.path.insert(0, str(ROOT / "extensions"))
 
 # Set before pytest makes its base folder and pytest-xdist starts its workers, which
-# inherit it; None in the workers (TMPDIR is set by then) and where memory has no room.
-SCRATCH = scratch.use_memory_for_scratch()
+# inherit it (as do the pytest sessions tests start).
+scratch.use_memory_for_scratch()
 
 
 # Hypothesis (test_generative.py): the fast tier draws a few answer sets, the same ones on
@@ -90,10 +90,10 @@ def pytest_configure(config):
 
 def pytest_sessionfinish(session, exitstatus):
     """A passing run's scratch files leave memory (pytest would keep them, as it keeps its last three runs')."""
-    if SCRATCH is None or exitstatus != 0 or hasattr(session.config, "workerinput"):
+    if exitstatus != 0 or hasattr(session.config, "workerinput"):
         return
     basetemp = session.config._tmp_path_factory.getbasetemp()  # the tmp_path_factory fixture's
-    if basetemp.is_relative_to(SCRATCH):
+    if basetemp.is_relative_to(scratch.folder_in_memory()):
         shutil.rmtree(basetemp, ignore_errors=True)
 
 

@@ -33,7 +33,12 @@ def memory_scratch(memory: Path = MEMORY, environ: os._Environ | dict = os.envir
         return None
     if found.f_flag & os.ST_NOEXEC or found.f_flag & os.ST_RDONLY or found.f_bavail * found.f_frsize < ROOM_NEEDED:
         return None
-    return memory / f"rna-template-tests-{os.getuid()}"
+    return memory / folder_in_memory().name
+
+
+def folder_in_memory(uid: int | None = None) -> Path:
+    """The one folder in memory the suite's scratch files go to (per user)."""
+    return MEMORY / f"rna-template-tests-{os.getuid() if uid is None else uid}"
 
 
 def use_memory_for_scratch() -> Path | None:
