@@ -538,16 +538,11 @@ def _refuse_switch(previous: Mapping, answers: Mapping) -> None:
 
 def _refuse_hand_edited_answers(context) -> None:
     """An update of an answers file edited by hand would change nothing: stop first."""
+    if str(context.get("_copier_operation")) != "update":
+        return
     conf = context.get("_copier_conf") or {}
-    if str(context.get("_copier_operation")) != "update" or conf.get("dst_path") is None \
-            or _copiers_scratch(str(conf["dst_path"])):
-        return
-    path = Path(conf["dst_path"], conf.get("answers_file") or ".copier-answers.yml")
-    try:
-        stat = path.stat()
-    except OSError:
-        return
-    if _edited_by_hand(str(path), stat.st_mtime_ns, stat.st_size):
+    found = _answers_file_in_destination(conf, conf.get("answers_file") or ".copier-answers.yml")
+    if found is not None and _edited_by_hand(*found):
         raise UserMessageError(f"rna-template: {rna.update.refusals.hand_edit_error(conf.get('answers_file'))}")
 
 
@@ -560,15 +555,22 @@ def _edited_by_hand(path: str, mtime_ns: int, size: int) -> bool:
 def _previous_answers(context) -> dict | None:
     """The answers being updated: the answers file already in the destination, if any."""
     conf = context.get("_copier_conf") or {}
-    if conf.get("dst_path") is None or conf.get("answers_file") is None or _copiers_scratch(str(conf["dst_path"])):
+    found = _answers_file_in_destination(conf, conf.get("answers_file"))
+    read = _answers_file(*found) if found is not None else None
+    return read[1] if read is not None and isinstance(read[1], dict) else None
+
+
+def _answers_file_in_destination(conf: Mapping, name: str | None) -> tuple[str, int, int] | None:
+    """The destination's answers file `name` as (path, mtime, size), what its cached reads are
+    keyed by; None when there is none, or when it is Copier's own in a scratch render."""
+    if conf.get("dst_path") is None or name is None or _copiers_scratch(str(conf["dst_path"])):
         return None
-    path = Path(conf["dst_path"], conf["answers_file"])
+    path = Path(conf["dst_path"], name)
     try:
         stat = path.stat()
     except OSError:
         return None
-    read = _answers_file(str(path), stat.st_mtime_ns, stat.st_size)
-    return read[1] if read is not None and isinstance(read[1], dict) else None
+    return str(path), stat.st_mtime_ns, stat.st_size
 
 
 @functools.lru_cache(maxsize=8)
