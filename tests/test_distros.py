@@ -14,7 +14,7 @@ import xml.etree.ElementTree as ET
 import pytest
 import yaml
 from rna import AnswerError, build_package
-from rna.distros import AUTOSTART_DISTROS, ROS2_DISTROS, UBUNTU
+from rna.distros import AUTOSTART_DISTROS, DISCOVERY_OFF_DISTROS, ROS2_DISTROS, UBUNTU
 from support.generation import VALID, generate
 from support.packages import package_dir
 
@@ -89,6 +89,25 @@ def test_lifecycle_autostart_where_the_distros_launch_ros_has_it(packages, distr
         nodes = [*ANSWERS["nodes"][:2], {**ANSWERS["nodes"][2], "autostart": True}]
         with pytest.raises(AnswerError, match=f"which {distro}'s launch_ros lacks"):
             build_package({**VALID, "ros_distro": distro, "nodes": nodes})
+
+
+@pytest.mark.parametrize("distro", ROS2_DISTROS)
+def test_node_unit_tests_switch_discovery_off_where_rcl_reads_it(packages, distro):
+    """ROS_AUTOMATIC_DISCOVERY_RANGE came with Iron: from Jazzy on, a node's unit test starts
+    its context with discovery off, so another process's node of the same name cannot answer
+    its graph queries (the ros tier runs that, on Kilted); Humble's tests are left as they were."""
+    python = (packages[distro] / "test" / "test_node_planner.py").read_text()
+    cpp = (packages[distro] / "test" / "test_node_driver.cpp").read_text()
+    patch = "with mock.patch.dict(os.environ, ROS_AUTOMATIC_DISCOVERY_RANGE='OFF'):\n        context = rclpy.Context()"
+    setenv = 'ASSERT_TRUE(rcutils_set_env("ROS_AUTOMATIC_DISCOVERY_RANGE", "OFF"));'
+    if distro in DISCOVERY_OFF_DISTROS:
+        assert patch in python and python.index(patch) < python.index("rclpy.init(context=context)")
+        assert "import os\nfrom unittest import mock\n" in python
+        assert setenv in cpp and cpp.index(setenv) < cpp.index("context_->init(0, nullptr)")
+        assert '#include "rcutils/env.h"' in cpp
+    else:
+        assert "ROS_AUTOMATIC_DISCOVERY_RANGE" not in python + cpp
+        assert "import os" not in python and "rcutils/env.h" not in cpp
 
 
 @pytest.mark.parametrize("distro", ROS2_DISTROS)

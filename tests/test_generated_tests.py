@@ -37,6 +37,7 @@ from support import ros1 as ros1_support
 from support import ros2 as ros2_support
 from support.generation import VARIANTS, example, generate
 from support.packages import model_of, package_dir
+from support.processes import NodeProcess, started
 
 STAND_INS = Path(__file__).parent / "support" / "stand_ins"
 
@@ -209,11 +210,10 @@ def colcon_tested(ros2, template_dir, tmp_path_factory) -> dict[str, Results]:
     env = ros2.env(ros2_support.pick_domain_id())
     ros2.colcon_build(path, env, "--cmake-args", "-DBUILD_TESTING=ON")
     colcon = str(ros2.venv / "bin" / "colcon")
-    # One package at a time: they share node names (stoppable and the mutated package are
-    # the same answers; they and robot_beacons have a beacon), and a lookup by node name
-    # returns the first node of that name in the domain, another package's as well
-    # (rmw_dds_common's graph cache; generated-package.md tells users).
-    tested = subprocess.run([colcon, "test", "--executor", "sequential", "--base-paths", "src",
+    # In parallel, as colcon does by default, although the packages share node names
+    # (stoppable and the mutated package are the same answers; they and robot_beacons have
+    # a beacon): each unit test's graph is its own process's.
+    tested = subprocess.run([colcon, "test", "--base-paths", "src",
                              "--event-handlers", "console_cohesion+",
                              "desktop_notification-", "--pytest-args", *PYTEST_ARGS],
                             cwd=path, env=env, capture_output=True, text=True, timeout=600, check=False)
@@ -239,6 +239,48 @@ def test_generated_tests_fail_when_a_node_lacks_its_endpoint(colcon_tested):
     assert results.failures == 2, results.output[-6000:]
     assert "test_publishers" in results.output and "/chatter" in results.output
     assert "test_parameters" in results.output and "parameter rate" in results.output
+
+
+# What a user could add below the generated beacon test: once another process would have been
+# discovered, the node's graph still holds its own process only, and lists the node's own
+# publishers rather than those of another process's node of the same name.
+LATER_CHECK = """
+
+def test_graph_holds_this_process_only(node):
+    time.sleep(2.0)
+    assert set(node.get_node_names()) == {'beacon'}  # earlier tests' beacons linger until collected
+    test_publishers(node)
+"""
+PROBE = Path(__file__).parent / "support" / "ros2_probe.py"
+
+
+@pytest.mark.ros
+def test_generated_unit_tests_ignore_other_processes_nodes_of_the_same_name(ros2, template_dir, tmp_path):
+    """A robot or another package's tests running nodes of the same names in the domain does
+    not answer for the node a generated unit test checks (CI at b55029f: it did)."""
+    destination = tmp_path / "src" / "stoppable"
+    generate(template_dir, destination, example("every_python_node"))
+    test = package_dir(destination) / "test" / "test_node_beacon.py"
+    test.write_text("import time\n" + test.read_text() + LATER_CHECK)
+    env = ros2.env(ros2_support.pick_domain_id())
+    ros2.colcon_build(tmp_path, env)
+    env = ros2.env(int(env["ROS_DOMAIN_ID"]), [tmp_path / "install"])
+    decoy = NodeProcess([str(ros2.python), str(PROBE), "decoy", "beacon", "talker"], env=env,
+                        log_path=tmp_path / "decoy.log")
+    with started(decoy):
+        decoy.wait_for("decoys up")
+        # An ordinary node of the domain discovers them: the decoys are there to be found.
+        observer = NodeProcess([str(ros2.python), str(PROBE), "sees", "beacon"], env=env,
+                               log_path=tmp_path / "observer.log")
+        with started(observer):
+            assert observer.wait() == 0, observer.tail()
+        tested = subprocess.run([str(ros2.python), "-m", "pytest", "-p", "no:cacheprovider", "-q",
+                                 "test/test_node_beacon.py", "test/test_node_talker.py"],
+                                cwd=package_dir(destination), env=env, capture_output=True, text=True,
+                                timeout=120, check=False)
+    assert tested.returncode == 0, tested.stdout[-6000:] + tested.stderr[-2000:]
+    assert "test_graph_holds_this_process_only" not in tested.stdout  # -q names failures only
+    assert re.search(r"\b(\d+) passed", tested.stdout), tested.stdout
 
 
 # Every node and endpoint kind in both languages, and custom interfaces in a package of their own.

@@ -25,6 +25,10 @@ LANGUAGE_NAMES = {"cpp": "C++", "python": "Python"}
 # autostart of LifecycleNode (Python) and of <lifecycle_node> (XML, YAML), from launch_ros
 # 0.26.12 (Jazzy) and 0.28.6 (Kilted); Humble's has neither, nor a lifecycle_node element.
 AUTOSTART_DISTROS = ("jazzy", "kilted", "rolling")
+# Distributions whose rcl reads ROS_AUTOMATIC_DISCOVERY_RANGE (from Iron on): OFF keeps a
+# process's participant from discovering any other, so a node unit test's graph holds its own
+# nodes only. Humble has ROS_LOCALHOST_ONLY, which still discovers the machine's processes.
+DISCOVERY_OFF_DISTROS = ("jazzy", "kilted", "rolling")
 
 
 def generation(distro: object) -> int:

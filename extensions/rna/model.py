@@ -377,6 +377,15 @@ class Package:
         return distros.autostart_error(self.ros_distro) is None
 
     @property
+    def tests_own_graph(self) -> bool:
+        """Its node unit tests can switch discovery off (distros.DISCOVERY_OFF_DISTROS).
+
+        rmw_dds_common answers a graph query by node name with the first node of that name in
+        the domain, whichever process holds it: a robot, a simulation, another package's test.
+        """
+        return self.ros_distro in distros.DISCOVERY_OFF_DISTROS
+
+    @property
     def dir(self) -> str:
         """The package folder within the destination: the destination itself for a node."""
         return layout.package_dir(self.name, self.target)

@@ -9,6 +9,10 @@ Run with the ROS venv's Python (the test process itself has no rclpy):
       print what was measured as JSON
   ros2_probe.py transitions NODE               print "watching" once it hears NODE's transition
                                                events, then each one until NODE is finalized
+  ros2_probe.py decoy NODE...                  hold nodes of these names, each publishing on
+                                               /decoy, print "decoys up", run until killed
+  ros2_probe.py sees NODE                      print "seen" once another process's NODE is in
+                                               the graph
 Exits non-zero when the node does not answer.
 """
 
@@ -152,13 +156,33 @@ def transitions(node, target, _):
         rclpy.spin_once(node, timeout_sec=0.1)
 
 
+def decoy(node, first, names):
+    decoys = [rclpy.create_node(name) for name in (first, *names)]
+    for held in decoys:
+        held.create_publisher(Int32, "/decoy", 10)
+    print("decoys up", flush=True)
+    executor = SingleThreadedExecutor()
+    for held in (node, *decoys):
+        executor.add_node(held)
+    executor.spin()
+
+
+def sees(node, target, _):
+    deadline = time.monotonic() + TIMEOUT
+    while target not in node.get_node_names():
+        if time.monotonic() > deadline:
+            sys.exit(f"no node {target} in the graph")
+        rclpy.spin_once(node, timeout_sec=0.1)
+    print("seen", flush=True)
+
+
 def main():
     command, target, *rest = sys.argv[1:]
     rclpy.init()
     node = rclpy.create_node("rna_test_probe")
     try:
         {"params": params, "lifecycle": lifecycle, "busy_goal": busy_goal,
-         "transitions": transitions}[command](node, target, rest)
+         "transitions": transitions, "decoy": decoy, "sees": sees}[command](node, target, rest)
     finally:
         node.destroy_node()
         rclpy.try_shutdown()

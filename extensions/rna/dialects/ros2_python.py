@@ -20,13 +20,15 @@ class Ros2Python(PythonDialect):
                              f"{self.base_module}:CtrlC",
                              *(self._import(t) for t in node.starter_interfaces)])
 
-    @property
-    def test_imports(self) -> str:
-        """Imports of the node's unit test (test/test_node_<node>.py)."""
+    def test_imports(self, discovery_off: bool) -> str:
+        """Imports of the node's unit test (test/test_node_<node>.py); `discovery_off`: its
+        context starts with ROS_AUTOMATIC_DISCOVERY_RANGE patched into os.environ."""
         node = self.node
+        environment = ["os", "unittest:mock"] if discovery_off else []
         actions = [f"rclpy.action:get_action_{role}_names_and_types_by_node"
                    for role in ("client", "server") if getattr(node, f"action_{role}s")]
-        return import_block(["pytest", "rclpy", *actions, f"{node.package}.{node.name}:{node.class_name}"])
+        return import_block([*environment, "pytest", "rclpy", *actions,
+                             f"{node.package}.{node.name}:{node.class_name}"])
 
     @staticmethod
     def qos(qos) -> str:
