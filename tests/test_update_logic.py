@@ -6,6 +6,8 @@ import shutil
 
 import rna
 import yaml
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from rna.update import blocks, config_merge, drift, kept, merge, protect, refusals, renames, resolve
 from support.generation import VALID
 
@@ -180,6 +182,19 @@ ANSWERS_TEXT = ("# Written by Copier: change answers with `copier update`, never
                 "nodes:\n-   language: python\n    name: driver\npackage_name: robot\n")
 RECORDED = {"_commit": "v0.2.0", "_src_path": "/elsewhere", "description": "Drives the robot",
             "nodes": [{"language": "python", "name": "driver"}], "package_name": "robot"}
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.text(), st.text(alphabet=st.characters(codec="ascii")))
+def test_answers_yaml_reads_back_as_the_answers_whatever_their_characters(text, ascii_text):
+    """Written all in ASCII, answers_yaml() reads nothing back (the escaped spelling would be
+    the same text); either way what it writes reads back as the answers."""
+    for answers in ({"description": text, "nodes": [{"name": "n", "description": ascii_text}]},
+                    {"label": ascii_text, "text": text}):
+        assert yaml.safe_load(resolve.answers_yaml(answers)) == answers
+        raw, escaped = (yaml.dump(answers, indent=4, allow_unicode=allow, default_flow_style=False)
+                        for allow in (True, False))
+        assert raw == escaped or not raw.isascii()
 
 
 def test_an_answers_file_edited_by_hand_is_told_from_one_copier_wrote():

@@ -47,6 +47,11 @@ WORD_PIECE = 30
 # ament_cpplint / ament_uncrustify (100 columns) and ament_flake8 (99).
 LIMITS = {"cpp": (100, 2), "python": (99, 4)}
 
+# Any marker at all: a line without one is left as it is, whatever its length.
+_ANY_MARKER = re.compile(f"[{BREAK}{SPLIT}{OPTIONAL}{OPTIONAL_END}{ALTERNATIVE}{WRAP}{_NESTED}]")
+# A line without brackets leaves the parenthesis depth as it was.
+_BRACKETS = re.compile(r"[()\[\]]")
+
 _OPTIONAL_WORDS = re.compile(
     f"{OPTIONAL}[^{OPTIONAL_END}{ALTERNATIVE}]*(?:{ALTERNATIVE}([^{OPTIONAL_END}]*))?{OPTIONAL_END}")
 _PREFIX = re.compile(r"[A-Za-z]*$")
@@ -177,6 +182,8 @@ def _nested(line: str, language: str, inside: bool) -> list[str]:
 
 def _depth(text: str, depth: int = 0) -> int:
     """The parenthesis depth after `text` (strings and comments skipped), starting at `depth`."""
+    if not _BRACKETS.search(text):
+        return depth
     quote, escaped = "", False
     for index, char in enumerate(text):
         if escaped:
@@ -202,6 +209,8 @@ _TYPE_END = re.compile(r"(?<![->&])>$|(?<!&) &$")
 def fit_line(line: str, language: str, inside: bool = False, listing: bool = False) -> list[str]:
     """One line, or the lines it is broken into; `inside`: the line continues an open bracket;
     `listing`: its markers are those of a list literal (see _nested)."""
+    if not _ANY_MARKER.search(line):
+        return [line]  # no place to break it at, nor words to drop
     if WRAP in line:
         return _wrapped(line, language, inside)
     width, step = LIMITS[language]

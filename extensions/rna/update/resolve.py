@@ -130,6 +130,9 @@ def answers_yaml(answers: Mapping) -> str:
     character: such answers are written with escapes instead.
     """
     text = yaml.dump(answers, indent=4, allow_unicode=True, default_flow_style=False)
-    if yaml.safe_load(text) != answers:
+    # Written all in ASCII, every other character was escaped already: the escaped spelling
+    # below would be the same text, so there is nothing to read back (PyYAML's Python parser
+    # takes about 1 ms per node of the answers).
+    if not text.isascii() and yaml.safe_load(text) != answers:
         text = yaml.dump(answers, indent=4, allow_unicode=False, default_flow_style=False)
     return text
