@@ -99,11 +99,14 @@ def test_node_unit_tests_switch_discovery_off_where_rcl_reads_it(packages, distr
     python = (packages[distro] / "test" / "test_node_planner.py").read_text()
     cpp = (packages[distro] / "test" / "test_node_driver.cpp").read_text()
     patch = "with mock.patch.dict(os.environ, ROS_AUTOMATIC_DISCOVERY_RANGE='OFF'):\n        context = rclpy.Context()"
-    setenv = 'ASSERT_TRUE(rcutils_set_env("ROS_AUTOMATIC_DISCOVERY_RANGE", "OFF"));'
+    setenv = 'ASSERT_TRUE(rcutils_set_env(kDiscoveryRange, "OFF"));'
     if distro in DISCOVERY_OFF_DISTROS:
         assert patch in python and python.index(patch) < python.index("rclpy.init(context=context)")
         assert "import os\nfrom unittest import mock\n" in python
         assert setenv in cpp and cpp.index(setenv) < cpp.index("context_->init(0, nullptr)")
+        restore = "rcutils_set_env(kDiscoveryRange, before.empty() ? nullptr : before.c_str())"
+        assert cpp.index("context_->init(0, nullptr)") < cpp.index(restore)
+        assert 'constexpr char kDiscoveryRange[] = "ROS_AUTOMATIC_DISCOVERY_RANGE";' in cpp
         assert '#include "rcutils/env.h"' in cpp
     else:
         assert "ROS_AUTOMATIC_DISCOVERY_RANGE" not in python + cpp

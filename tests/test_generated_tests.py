@@ -244,12 +244,25 @@ def test_generated_tests_fail_when_a_node_lacks_its_endpoint(colcon_tested):
 # What a user could add below the generated beacon test: once another process would have been
 # discovered, the node's graph still holds its own process only, and lists the node's own
 # publishers rather than those of another process's node of the same name.
+# And a context of the user's own discovers other processes as the environment says.
 LATER_CHECK = """
 
 def test_graph_holds_this_process_only(node):
     time.sleep(2.0)
     assert set(node.get_node_names()) == {'beacon'}  # earlier tests' beacons linger until collected
     test_publishers(node)
+
+
+def test_contexts_of_yours_discover_as_given():
+    context = rclpy.Context()
+    rclpy.init(context=context)
+    observer = rclpy.create_node('observer', context=context)
+    deadline = time.monotonic() + 10.0
+    while 'rna_test_probe' not in observer.get_node_names() and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert 'rna_test_probe' in observer.get_node_names()
+    observer.destroy_node()
+    rclpy.shutdown(context=context)
 """
 PROBE = Path(__file__).parent / "support" / "ros2_probe.py"
 
@@ -280,6 +293,7 @@ def test_generated_unit_tests_ignore_other_processes_nodes_of_the_same_name(ros2
                                 timeout=120, check=False)
     assert tested.returncode == 0, tested.stdout[-6000:] + tested.stderr[-2000:]
     assert "test_graph_holds_this_process_only" not in tested.stdout  # -q names failures only
+    assert "test_contexts_of_yours_discover_as_given" not in tested.stdout
     assert re.search(r"\b(\d+) passed", tested.stdout), tested.stdout
 
 
