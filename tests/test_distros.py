@@ -111,6 +111,12 @@ def test_node_unit_tests_switch_discovery_off_where_rcl_reads_it(packages, distr
     else:
         assert "ROS_AUTOMATIC_DISCOVERY_RANGE" not in python + cpp
         assert "import os" not in python and "rcutils/env.h" not in cpp
+    # The README says which tests want a domain of their own.
+    readme = " ".join((packages[distro].parent / "README.md").read_text().split())
+    assert "colcon test --packages-select rover colcon test-result --verbose" in readme
+    assert ("The node tests keep their ROS graph to their own process. The launch test looks"
+            in readme) == (distro in DISCOVERY_OFF_DISTROS)
+    assert ("The node and launch tests look nodes up" in readme) == (distro not in DISCOVERY_OFF_DISTROS)
 
 
 @pytest.mark.parametrize("distro", ROS2_DISTROS)

@@ -67,6 +67,11 @@ def test_variant_generates_a_consistent_package(make_package, variant):
         loaded = config if ros1 else config["/**"]["ros__parameters"]
         assert {re.split("[:=]", p)[0] for p in declared} == set(loaded)
 
+    # The README's test commands name this package (catkin's per-package target and results).
+    readme = (destination / "README.md").read_text()
+    commands = ([f"catkin_make run_tests_{name}", f"catkin_test_results build/test_results/{name}"] if ros1
+                else [f"colcon test --packages-select {name}", "colcon test-result --verbose"])
+    assert all(f"\n{command}\n" in readme for command in commands), readme
     if ros1:
         for node in python_nodes:
             assert os.access(package / "scripts" / f"{node}.py", os.X_OK)
