@@ -10,17 +10,30 @@ from pathlib import Path
 import pexpect
 import pytest
 import yaml
+from copier._cli import CopierApp
 from support.generation import FIXED_ANSWERS, answers_of
 from support.terminal import spawn_copier
 
 COPIER = str(Path(sys.executable).with_name("copier"))
 
 
-def copier_copy(template: Path, destination: Path, *args: str) -> subprocess.CompletedProcess:
+def copy_arguments(template: Path, destination: Path, *args: str) -> list[str]:
     data = [f"--data={key}={value}" for key, value in FIXED_ANSWERS.items()]
-    return subprocess.run([COPIER, "copy", "--trust", "--defaults", "--vcs-ref=HEAD", *data, *args,
-                           str(template), str(destination)], capture_output=True, text=True, stdin=subprocess.DEVNULL,
-                          timeout=120)
+    return ["copy", "--trust", "--defaults", "--vcs-ref=HEAD", *data, *args, str(template), str(destination)]
+
+
+def copier_copy(template: Path, destination: Path, *args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([COPIER, *copy_arguments(template, destination, *args)], capture_output=True, text=True,
+                          stdin=subprocess.DEVNULL, timeout=120)
+
+
+def copier_cli_in_process(capsys, template: Path, destination: Path, *args: str) -> tuple[int, str]:
+    """The same command through Copier's command-line app, run in this process: about 0.1 s
+    instead of 0.7 s for a new interpreter and Copier's imports; its exit code and stderr.
+    An exception the app does not turn into a message reaches the test."""
+    capsys.readouterr()
+    _, code = CopierApp.run(["copier", *copy_arguments(template, destination, *args)], exit=False)
+    return code, capsys.readouterr().err
 
 
 @pytest.mark.parametrize(
@@ -48,13 +61,14 @@ def copier_copy(template: Path, destination: Path, *args: str) -> subprocess.Com
         (["--data", "nodes=[{name: t, publishers: ['v:geometry_msgs/msg/Twst']}]"], "did you mean Twist?"),
     ],
 )
-def test_bad_answers_give_one_line_and_write_nothing(template_folder, tmp_path, args, message):
+def test_bad_answers_give_one_line_and_write_nothing(template_folder, tmp_path, capsys, args, message):
+    # In process; the tests below run the installed `copier` command for the same path.
     destination = tmp_path / "out"
-    result = copier_copy(template_folder, destination, *args)
-    assert result.returncode == 1
-    assert "Traceback" not in result.stderr
-    errors = [line for line in result.stderr.splitlines() if "invalid answer" in line]
-    assert len(errors) == 1 and message in errors[0], result.stderr
+    code, stderr = copier_cli_in_process(capsys, template_folder, destination, *args)
+    assert code == 1
+    assert "Traceback" not in stderr
+    errors = [line for line in stderr.splitlines() if "invalid answer" in line]
+    assert len(errors) == 1 and message in errors[0], stderr
     assert not destination.exists()
 
 
