@@ -264,7 +264,6 @@ def test_contexts_of_yours_discover_as_given():
     observer.destroy_node()
     rclpy.shutdown(context=context)
 """
-PROBE = Path(__file__).parent / "support" / "ros2_probe.py"
 
 
 @pytest.mark.ros
@@ -278,12 +277,12 @@ def test_generated_unit_tests_ignore_other_processes_nodes_of_the_same_name(ros2
     env = ros2.env(ros2_support.pick_domain_id())
     ros2.colcon_build(tmp_path, env)
     env = ros2.env(int(env["ROS_DOMAIN_ID"]), [tmp_path / "install"])
-    decoy = NodeProcess([str(ros2.python), str(PROBE), "decoy", "beacon", "talker"], env=env,
+    decoy = NodeProcess([str(ros2.python), str(ros2_support.PROBE), "decoy", "beacon", "talker"], env=env,
                         log_path=tmp_path / "decoy.log")
     with started(decoy):
         decoy.wait_for("decoys up")
         # An ordinary node of the domain discovers them: the decoys are there to be found.
-        observer = NodeProcess([str(ros2.python), str(PROBE), "sees", "beacon"], env=env,
+        observer = NodeProcess([str(ros2.python), str(ros2_support.PROBE), "sees", "beacon"], env=env,
                                log_path=tmp_path / "observer.log")
         with started(observer):
             assert observer.wait() == 0, observer.tail()

@@ -31,7 +31,6 @@ from support.strategies import valid_answers
 
 pytestmark = pytest.mark.ros
 
-PROBE = Path(__file__).parent / "support" / "ros2_probe.py"
 TEARDOWN_CHECK = Path(__file__).parent / "support" / "teardown_check.py"
 
 SERVICES = example("services_and_actions")
@@ -79,7 +78,7 @@ class Workspace:
         return NodeProcess(argv, env=self.env, log_path=self.logs / f"{log or executable}.log")
 
     def probe(self, *args: str) -> str:
-        return self.run_script(PROBE, *args)
+        return self.run_script(ros2_support.PROBE, *args)
 
     def run_script(self, script: Path, *args: str) -> str:
         """Run a script with the ROS venv's Python in this workspace; its standard output."""
@@ -303,7 +302,8 @@ def test_lifecycle_node_stopped_by_sigint_shuts_down_through_its_lifecycle(works
         with started(workspace.node(package, "beacon", log=f"{package}_beacon_sigint_{state}_{attempt}")) as (beacon,):
             if transitions:
                 workspace.probe("lifecycle", "beacon", *transitions)
-            watcher = NodeProcess([str(workspace.ros2.python), str(PROBE), "transitions", "beacon"], env=workspace.env,
+            watcher = NodeProcess([str(workspace.ros2.python), str(ros2_support.PROBE), "transitions", "beacon"],
+                                  env=workspace.env,
                                   log_path=workspace.logs / f"{package}_beacon_watch_{state}_{attempt}.log")
             with started(watcher):
                 watcher.wait_for("watching")
@@ -389,7 +389,7 @@ def test_python_nodes_stop_cleanly_on_sigint_at_any_moment(workspace):
                                       log_path=log_dir.with_suffix(".log"))
                 runs.append(interrupts.Run(node["name"], process, log_dir, interrupts.draw_delay(rng)))
                 if node.get("lifecycle"):  # driven to active from another process, as early as it can be
-                    drivers.append(NodeProcess([str(workspace.ros2.python), str(PROBE), "lifecycle", name,
+                    drivers.append(NodeProcess([str(workspace.ros2.python), str(ros2_support.PROBE), "lifecycle", name,
                                                 "configure", "activate"],
                                                env=workspace.env, log_path=log_dir.with_suffix(".driver.log")))
         with started(*(run.process for run in runs), *drivers):

@@ -32,6 +32,8 @@ from pathlib import Path
 REQUIREMENTS = Path(__file__).with_name("ros2-requirements")
 DISTROS = ("kilted", "jazzy")
 DEFAULT_DISTRO = DISTROS[0]
+# A separate ROS 2 process that asks running nodes things (run with a venv's Python).
+PROBE = Path(__file__).with_name("ros2_probe.py")
 # Bump when the set-up steps below change, so existing venvs are rebuilt with them.
 RECIPE_VERSION = "1"
 MARKER = ".rna-template-ready"
