@@ -5,7 +5,7 @@ in callbacks, helper methods, imports and includes, build lines and dependencies
 managed blocks, new files, tuned parameters, extra launch actions, README paragraphs).
 Each scenario crosses it with one change (a node added or removed, an endpoint or a
 parameter added to the edited node or to another one, a default changed, the template
-upgraded from 0.1.0 to 0.2.0) and requires exit code 0, no conflict markers, the user's
+upgraded from each release) and requires exit code 0, no conflict markers, the user's
 files untouched and every line the user wrote still in place.
 
 The conflict scenarios edit lines INSIDE a managed block that the change also rewrites:
@@ -30,7 +30,7 @@ if "support.template_repo" not in sys.modules:  # its asserts explain themselves
 from rna.update import resolve  # noqa: E402
 from support.generation import git  # noqa: E402
 from support.template_repo import (  # noqa: E402
-    FLAVORS, NEW_VERSION, OLD_VERSION, PACKAGE, Flavor, answers_of, append_after, broken_packages, commit_all,
+    FLAVORS, NEW_VERSION, PACKAGE, RELEASES, Flavor, answers_of, append_after, broken_packages, commit_all,
     conflict_excerpts, conflict_regions, conflicted_files, conflicts_of, find_node, insert_before, kept_of,
     missing_block, replace_text, run_update, to_port_of, write_new_file,
 )
@@ -280,8 +280,9 @@ def remove(name: str) -> Callable[[Flavor, list[dict]], list[dict]]:
 
 @dataclass(frozen=True)
 class Change:
-    nodes: Callable[[Flavor, list[dict]], list[dict]] | None  # None: the template upgrade
+    nodes: Callable[[Flavor, list[dict]], list[dict]] | None  # None: the template upgrade from `release`
     effect: Callable[[Path, Flavor], bool]  # did the update do what the change asks?
+    release: str = NEW_VERSION  # the version the package is made with
 
 
 def text(project: Path, path: str) -> str:
@@ -328,8 +329,8 @@ CHANGES = {
     "remove-another-node": Change(
         remove("logger"),
         lambda p, f: not (p / f.config_file("logger")).exists() and "logger" not in text(p, f.launch_file)),
-    "template-upgrade-0.1.0-to-0.2.0": Change(
-        None, lambda p, f: answers_of(p)["_commit"] == NEW_VERSION),
+    **{f"template-upgrade-from-{release.removeprefix('v')}": Change(
+        None, lambda p, f: answers_of(p)["_commit"] == NEW_VERSION, release) for release in RELEASES},
 }
 
 
@@ -347,7 +348,7 @@ def apply_change(project: Path, flavor: Flavor, change: Change):
 def test_user_lines_survive(project, figure, flavor_name, change_name):
     flavor = Flavor(flavor_name)
     change = CHANGES[change_name]
-    destination = project(flavor_name, OLD_VERSION if change.nodes is None else NEW_VERSION)
+    destination = project(flavor_name, change.release)
     edits = lived_in(destination, flavor)
 
     result = apply_change(destination, flavor, change)

@@ -9,7 +9,9 @@ from pathlib import Path
 import pytest
 
 from support.generation import ROOT, git
-from support.releases import ReleaseError, changelog_versions, release_commit, tag_releases, versions
+from support.releases import (
+    ReleaseError, changelog_versions, following_version, release_commit, tag_releases, versions,
+)
 
 TAG_RELEASES = ROOT / "tests" / "tools" / "tag-releases"
 
@@ -49,6 +51,10 @@ def run_tool(repo: Path) -> subprocess.CompletedProcess:
 def test_changelog_versions_are_the_version_headings():
     text = "## Unreleased\n### 9.9.9\n## 1.10.0 (2026-03-01)\n## 1.2.3\nsee ## 0.0.1\n## 1.0.0rc1\n"
     assert changelog_versions(text) == ["1.10.0", "1.2.3"]
+
+
+def test_the_following_version_is_the_next_patch_release():
+    assert [following_version(v) for v in ("0.2.0", "1.9.9", "0.10.0")] == ["0.2.1", "1.9.10", "0.10.1"]
 
 
 def test_a_release_is_the_commit_before_its_heading(history):

@@ -25,9 +25,9 @@ if "support.template_repo" not in sys.modules:  # its asserts explain themselves
     pytest.register_assert_rewrite("support.template_repo")
 from support.packages import dependency_names  # noqa: E402
 from support.template_repo import (  # noqa: E402
-    FLAVORS, NEW_VERSION, OLD_VERSION, PACKAGE, Flavor, answers_of, append_after, commit_all, conflict_excerpts,
-    conflicted_files, find_node, generate_project, git, kept_of, managed_lines, missing_block, replace_text, run_update,
-    summary_of, to_port_of, tree_differences, unmanaged_lines, user_answers,
+    FLAVORS, NEW_VERSION, OLD_VERSION, PACKAGE, RELEASES, Flavor, answers_of, append_after, commit_all,
+    conflict_excerpts, conflicted_files, find_node, generate_project, git, kept_of, managed_lines, missing_block,
+    replace_text, run_update, summary_of, to_port_of, tree_differences, unmanaged_lines, user_answers,
 )
 
 pytest_plugins = ("support.template_repo",)
@@ -567,7 +567,7 @@ def test_add_an_interface(project, current_template, tmp_path, case):
     assert git("status", "--porcelain", cwd=destination).stdout == "", again
 
 
-# ─── Template upgrade 0.1.0 -> 0.2.0 ──────────────────────────────────────────
+# ─── Template upgrades from every release ─────────────────────────────────────
 
 
 def lived_in_edits(project: Path, flavor: Flavor) -> dict[str, list[str]]:
@@ -592,11 +592,12 @@ def lived_in_edits(project: Path, flavor: Flavor) -> dict[str, list[str]]:
     return kept
 
 
+@pytest.mark.parametrize("release", RELEASES)
 @pytest.mark.parametrize("flavor_name", FLAVORS)
-def test_upgrade_from_the_previous_release_keeps_user_edits(project, flavor_name):
+def test_upgrade_from_a_release_keeps_user_edits(project, flavor_name, release):
     flavor = Flavor(flavor_name)
-    destination = project(flavor_name, OLD_VERSION)
-    assert answers_of(destination)["_commit"] == OLD_VERSION
+    destination = project(flavor_name, release)
+    assert answers_of(destination)["_commit"] == release
     kept = lived_in_edits(destination, flavor)
     user_file_before = (destination / flavor.user_file("driver")).read_text()
 
@@ -649,15 +650,16 @@ EVERYTHING = {
 }
 
 
+@pytest.mark.parametrize("release", RELEASES)
 @pytest.mark.parametrize("package", ["base", "every-endpoint"])
 @pytest.mark.parametrize("flavor_name", FLAVORS)
-def test_upgrade_parity_with_a_fresh_copy(project, release_template, tmp_path, flavor_name, package):
-    """An untouched package made by 0.1.0 and updated to 0.2.0 equals a fresh 0.2.0 copy."""
+def test_upgrade_parity_with_a_fresh_copy(project, release_template, tmp_path, flavor_name, package, release):
+    """An untouched package made by a release and updated to the working tree equals a fresh copy of it."""
     if package == "base":
-        destination = project(flavor_name, OLD_VERSION)
+        destination = project(flavor_name, release)
     else:
         destination = generate_project(release_template, tmp_path / "project", EVERYTHING[flavor_name],
-                                       vcs_ref=OLD_VERSION)
+                                       vcs_ref=release)
 
     result = run_update(destination)
     assert_clean_update(result, destination)

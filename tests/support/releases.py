@@ -64,6 +64,12 @@ def tag_name(version: str) -> str:
     return f"v{version}"
 
 
+def following_version(version: str) -> str:
+    """The patch release after `version` (1.2.3 -> 1.2.4): what unreleased work is, at the least."""
+    major, minor, patch = (int(part) for part in version.split("."))
+    return f"{major}.{minor}.{patch + 1}"
+
+
 def missing_tags(repo: Path) -> list[str]:
     """The tags vX.Y.Z of the changelog's versions that this clone lacks."""
     return [tag_name(version) for version in versions(repo)

@@ -5,11 +5,12 @@ project that is a clean git repository generated from one of those tags. This mo
 builds both in temporary folders:
 
 * `snapshot_repo()`: the working tree's template (copier.yml, template/, extensions/)
-  committed in a fresh repository and tagged, e.g. v0.2.0;
-* `release_history_repo()`: the real v0.1.0 of this repository (`git archive` of the
-  commit the changelog names, support/releases.py) tagged v0.1.0, with the working tree
-  committed on top and tagged v0.2.0, so an update from 0.1.0 to 0.2.0 runs over real
-  history;
+  committed in a fresh repository and tagged as the version after the newest release
+  (`NEW_VERSION`, e.g. v0.3.1 after 0.3.0);
+* `release_history_repo()`: every real release of this repository (`git archive` of the
+  commit the changelog names, support/releases.py), oldest first, each committed and
+  tagged, with the working tree committed on top and tagged `NEW_VERSION`, so an update
+  from any release users have runs over real history;
 * `generate_project()`: `copier copy` from one tag with machine-independent answers, then
   `git init` and a commit;
 * `run_update()`: the `copier` command line, `copier update --trust --defaults`, as a
@@ -44,10 +45,11 @@ from .generation import (
     ANSWERS_FILE, FIXED_ANSWERS, ROOT, TEMPLATE_ITEMS, answers_of, example, git, snapshot_template, subprocess_env,
 )
 from .packages import rna
-from .releases import ReleaseError, release_commit
+from .releases import ReleaseError, following_version, release_commit, tag_name, versions
 
-OLD_VERSION = "v0.1.0"
-NEW_VERSION = "v0.2.0"
+RELEASES = tuple(tag_name(version) for version in reversed(versions(ROOT)))  # oldest first
+NEW_VERSION = tag_name(following_version(versions(ROOT)[0]))  # the working tree
+OLD_VERSION = "v0.1.0"  # the first release: answers without node languages, catkin targets before 0.2.0
 
 CONFLICT_MARKERS = ("<<<<<<< before updating", ">>>>>>> after updating")
 ANSI = re.compile(r"\x1b\[[0-9;]*[A-Za-z]")
@@ -81,28 +83,30 @@ def release_ref(tag: str, source: Path = ROOT) -> str:
         pytest.fail(f"the upgrade tests need the release {tag}: {error}", pytrace=False)
 
 
-def release_history_repo(destination: Path, old: str = OLD_VERSION, new: str = NEW_VERSION,
+def release_history_repo(destination: Path, releases: tuple[str, ...] = RELEASES, new: str = NEW_VERSION,
                          source: Path = ROOT, new_tree: Path | None = None) -> TemplateRepo:
-    """The real `old` release of this repository tagged `old`, the working tree on top tagged `new`.
+    """The real `releases` of this repository, oldest first, each tagged; the working tree on top tagged `new`.
 
     `new_tree` (default: `source`'s working tree) is where the new version's copier.yml,
     template/ and extensions/ are taken from: passing the snapshot repository of the same
-    session makes both v0.2.0 identical even while the working tree is being edited.
+    session makes both `new` versions identical even while the working tree is being edited.
     """
-    archive = subprocess.run(["git", "-C", str(source), "archive", "--format=tar", release_ref(old, source),
-                              *TEMPLATE_ITEMS],
-                             capture_output=True, check=True)
     destination.mkdir(parents=True, exist_ok=True)
-    with tarfile.open(fileobj=io.BytesIO(archive.stdout)) as tar:
-        tar.extractall(destination, filter="tar")
     git("init", "-q", "-b", "main", cwd=destination)
-    git("add", "-A", cwd=destination)
-    git("commit", "-q", "-m", f"rna-template {old} (from git archive {old})", cwd=destination)
-    git("tag", "-a", old, "-m", f"rna-template {old}", cwd=destination)
+    for release in releases:
+        _replace_template_items(destination)
+        archive = subprocess.run(["git", "-C", str(source), "archive", "--format=tar", release_ref(release, source),
+                                  *TEMPLATE_ITEMS],
+                                 capture_output=True, check=True)
+        with tarfile.open(fileobj=io.BytesIO(archive.stdout)) as tar:
+            tar.extractall(destination, filter="tar")
+        git("add", "-A", cwd=destination)
+        git("commit", "-q", "-m", f"rna-template {release} (from git archive {release})", cwd=destination)
+        git("tag", "-a", release, "-m", f"rna-template {release}", cwd=destination)
 
+    _replace_template_items(destination)
     for item in TEMPLATE_ITEMS:
         path = destination / item
-        shutil.rmtree(path) if path.is_dir() else path.unlink()
         origin = (new_tree or source) / item
         if origin.is_dir():
             shutil.copytree(origin, path, ignore=shutil.ignore_patterns("__pycache__"))
@@ -112,7 +116,17 @@ def release_history_repo(destination: Path, old: str = OLD_VERSION, new: str = N
     # The working tree may equal the release (nothing changed yet): still a new version.
     git("commit", "-q", "--allow-empty", "-m", f"rna-template {new} (working tree)", cwd=destination)
     git("tag", "-a", new, "-m", f"rna-template {new}", cwd=destination)
-    return TemplateRepo(destination, (old, new))
+    return TemplateRepo(destination, (*releases, new))
+
+
+def _replace_template_items(destination: Path) -> None:
+    """Remove the template's items, so that files a version deleted are gone from the next commit."""
+    for item in TEMPLATE_ITEMS:
+        path = destination / item
+        if path.is_dir():
+            shutil.rmtree(path)
+        elif path.exists():
+            path.unlink()
 
 
 # ─── Projects ─────────────────────────────────────────────────────────────────
@@ -563,13 +577,13 @@ def pytest_configure(config):
 
 @pytest.fixture(scope="session")
 def current_template(tmp_path_factory) -> TemplateRepo:
-    """The working tree's template, tagged v0.2.0."""
+    """The working tree's template, tagged NEW_VERSION."""
     return snapshot_repo(tmp_path_factory.mktemp("template-current"), NEW_VERSION)
 
 
 @pytest.fixture(scope="session")
 def release_template(tmp_path_factory, current_template) -> TemplateRepo:
-    """The v0.1.0 release of this repository (found by the changelog), then the working tree as v0.2.0."""
+    """Every release of this repository (found by the changelog), then the working tree as NEW_VERSION."""
     return release_history_repo(tmp_path_factory.mktemp("template-history"), new_tree=current_template.path)
 
 
@@ -580,7 +594,7 @@ def base_project(request, tmp_path_factory):
 
     def get(flavor: str, version: str = NEW_VERSION) -> Path:
         if (flavor, version) not in cache:
-            template = request.getfixturevalue("release_template" if version == OLD_VERSION else "current_template")
+            template = request.getfixturevalue("release_template" if version in RELEASES else "current_template")
             destination = tmp_path_factory.mktemp(f"base-{flavor}-{version}") / "project"
             cache[flavor, version] = generate_project(template, destination, BASE_ANSWERS[flavor], vcs_ref=version)
         return cache[flavor, version]
