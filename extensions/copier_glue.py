@@ -298,6 +298,7 @@ class RnaExtension(ContextHook):
         _compile_each_string_once(environment)
         _compile_each_source_once_per_process(environment)
         _ask_git_for_the_file_mode_once_per_worker()
+        _render_the_answers_file_name_once_per_render()
         environment.globals.update(
             answer_error=answer_error, answers_file_name=answers_file_name, base_files=base_files,
             builds_interfaces=rna.distros.BUILDS_INTERFACES, languages=rna.distros.languages,
@@ -475,6 +476,43 @@ def _ask_git_for_the_file_mode_once_per_worker() -> None:
 
     once_per_worker.rna_once_per_worker = True
     Worker._sync_git_index_executable_bit = once_per_worker
+
+
+def _render_the_answers_file_name_once_per_render() -> None:
+    """Copier renders the answers file's name (`_answers_file`, templated here) anew for each
+    file it renders, and again each time a render's context hook reads `_copier_conf.answers_file`:
+    about ten renders per file, each with a render context of its own.
+
+    While a worker renders its files (Copier's render phase, after the questions), its answers
+    are final, so the name is too: it is rendered once per render phase of a worker (its Jinja
+    environment holds it) and asked anew in every other phase. A kept name is preprocessed all
+    the same, as compiling it would: Copier's yield tag resets its state there, and Copier
+    checks that state after rendering each file. With another Copier, where the property or
+    the phases are not there, nothing is changed.
+    """
+    try:
+        from copier._main import Worker
+        from copier._types import Phase
+    except ImportError:
+        return
+    answers_relpath = getattr(Worker, "answers_relpath", None)
+    if not isinstance(answers_relpath, property) or getattr(answers_relpath.fget, "rna_once_per_render", False):
+        return
+    render_name = answers_relpath.fget
+
+    @functools.wraps(render_name)
+    def once_per_render(self):
+        if Phase.current() is not Phase.RENDER:
+            return render_name(self)
+        held = self.jinja_env.__dict__.get("rna_answers_relpath")
+        if held is None or held[0] is not self.answers:  # the answers object is the worker's render's
+            held = self.jinja_env.__dict__["rna_answers_relpath"] = (self.answers, render_name(self))
+        else:
+            self.jinja_env.preprocess(str(self.answers_file or self.template.answers_relpath))
+        return held[1]
+
+    once_per_render.rna_once_per_render = True
+    Worker.answers_relpath = property(once_per_render, doc=answers_relpath.__doc__)
 
 
 def _git_file_mode(root: str) -> str | None:
