@@ -622,11 +622,22 @@ def _copiers_scratch(destination: str) -> bool:
     return rna.update.kept.kind_of(Path(destination)) is not None
 
 
-@functools.lru_cache(maxsize=8)
-def _answers_file(path: str, _mtime_ns: int, _size: int) -> tuple[str, object] | None:
+def _answers_file(path: str, mtime_ns: int, size: int) -> tuple[str, object] | None:
     """An answers file's text and what it reads as (None when it does not read as YAML), read
-    once per version of the file: the hook runs for every file, and both the answers being
-    updated and the hand-edit check need it (PyYAML's Python parser, as Copier reads it)."""
+    once per version of the file in a process: the hook runs for every file, both the answers
+    being updated and the hand-edit check need it, and an update runs the glue of both
+    template versions (PyYAML's Python parser, as Copier reads it: 10 to 15 ms for 20 nodes).
+    Process-wide (`answers_files`): {(path, mtime_ns, size): that pair or None}, 8 at most."""
+    read = _process_wide().__dict__.setdefault("answers_files", {})
+    key = (path, mtime_ns, size)
+    if key not in read:
+        if len(read) >= 8:
+            del read[next(iter(read))]
+        read[key] = _read_answers_file(path)
+    return read[key]
+
+
+def _read_answers_file(path: str) -> tuple[str, object] | None:
     try:
         text = Path(path).read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError):
