@@ -359,10 +359,13 @@ class RnaExtension(ContextHook):
         renamed = rna.update.renames.rename_error(previous, context, update=_operation() != "copy")
         if renamed is not None:
             raise UserMessageError(f"rna-template: invalid answer to 'nodes': {renamed} (nothing was written)")
-        if previous is not None:  # an update (the first render in the project comes before any write)
+        if previous is not None:  # an update: answers were in the destination before this run
             _refuse_switch(previous, context)
-            # nodes given without a language keep theirs
-            rna.update.resolve.keep_languages(context.get("nodes"), previous)
+            # nodes given without a language keep theirs: done in place, so once per list of nodes
+            nodes = context.get("nodes")
+            if _languages_kept.get(id(nodes)) is not nodes:
+                rna.update.resolve.keep_languages(nodes, previous)
+                _languages_kept[id(nodes)] = nodes
         answers = {key: context.get(key) for key in (*rna.answers.QUESTIONS, "copyright_year")}
         # Whether it is an update is part of the key: Copier renders some names before it
         # says which answers file it updates, and the update's checks must still run.
@@ -579,22 +582,43 @@ def _refuse_hand_edited_answers(context) -> None:
     if str(context.get("_copier_operation")) != "update":
         return
     conf = context.get("_copier_conf") or {}
-    found = _answers_file_in_destination(conf, conf.get("answers_file") or ".copier-answers.yml")
-    if found is not None and _edited_by_hand(*found):
+    name = conf.get("answers_file") or ".copier-answers.yml"
+    key = (str(conf.get("dst_path")), str(name))
+    if key not in _hand_edited:
+        read = _answers_found(conf, name)
+        _hand_edited[key] = read is not None and rna.update.resolve.edited_by_hand(*read) is True
+    if _hand_edited[key]:
         raise UserMessageError(f"rna-template: {rna.update.refusals.hand_edit_error(conf.get('answers_file'))}")
 
 
-@functools.lru_cache(maxsize=8)
-def _edited_by_hand(path: str, mtime_ns: int, size: int) -> bool:
-    read = _answers_file(path, mtime_ns, size)
-    return read is not None and rna.update.resolve.edited_by_hand(*read) is True
+# Copier loads this glue afresh for each of its workers (a copy has one, an update four),
+# so these last one worker's run.
+_found_answers: dict[tuple[str, str], tuple[str, object] | None] = {}
+_hand_edited: dict[tuple[str, str], bool] = {}
+_languages_kept: dict[int, object] = {}
+
+
+def _answers_found(conf: Mapping, name: str | None) -> tuple[str, object] | None:
+    """The destination's answers file `name` as this Copier worker first found it: (its text,
+    what it reads as), or None when there was none.
+
+    Copier writes the answers file halfway through its render (a copy's first one, an
+    update's new answers); what the checks are about is the file that was there before:
+    the answers being updated, or none for a new package. Reading the one just written
+    (at every file after it) only made a second model of the same answers, and made a copy
+    of n nodes check each node's language n times per file.
+    """
+    key = (str(conf.get("dst_path")), str(name))
+    if key not in _found_answers:
+        found = _answers_file_in_destination(conf, name)
+        _found_answers[key] = _answers_file(*found) if found is not None else None
+    return _found_answers[key]
 
 
 def _previous_answers(context) -> dict | None:
-    """The answers being updated: the answers file already in the destination, if any."""
+    """The answers being updated: the answers file in the destination before Copier wrote, if any."""
     conf = context.get("_copier_conf") or {}
-    found = _answers_file_in_destination(conf, conf.get("answers_file"))
-    read = _answers_file(*found) if found is not None else None
+    read = _answers_found(conf, conf.get("answers_file"))
     return read[1] if read is not None and isinstance(read[1], dict) else None
 
 
