@@ -369,7 +369,8 @@ class RnaExtension(ContextHook):
         answers = {key: context.get(key) for key in (*rna.answers.QUESTIONS, "copyright_year")}
         # Whether it is an update is part of the key: Copier renders some names before it
         # says which answers file it updates, and the update's checks must still run.
-        key = _answers_key([answers, str((context.get('_copier_conf') or {}).get('dst_path')), previous is not None])
+        where = (str((context.get('_copier_conf') or {}).get('dst_path')), previous is not None)
+        key = _answers_key_of_this_render(answers, where)
         if key not in _models:
             try:
                 _models[key] = rna.build_package(answers)
@@ -547,6 +548,23 @@ def _compiler_signature(environment) -> str:
 
 
 _models: dict[bytes | str, object] = {}
+_last_key: list = [(), None, None]  # the answer objects, where, and their key (a Copier worker's)
+
+
+def _answers_key_of_this_render(answers: dict, where: tuple) -> bytes | str:
+    """The model's key for the answers of a file's render: the same answer objects as the
+    file before give the same key without making it again (it takes a pickle of every node,
+    for every file). Nothing changes answers in place once the render phase has started:
+    the hook has given each node its language before the first key is made.
+    """
+    values = tuple(answers.values())
+    last_values, last_where, last_key = _last_key
+    if where == last_where and len(values) == len(last_values) and all(
+            value is last for value, last in zip(values, last_values, strict=True)):
+        return last_key
+    key = _answers_key([answers, *where])
+    _last_key[:] = [values, where, key]
+    return key
 
 
 def _answers_key(values: list) -> bytes | str:
@@ -672,7 +690,7 @@ def _read_answers_file(path: str) -> tuple[str, object] | None:
         return text, None
 
 
-_checked: set[bytes | str] = set()
+_checked: list[Mapping] = []  # the given answers checked: a worker's are one object, Copier's `data`
 
 
 def _check_given_answers(context) -> None:
@@ -686,10 +704,9 @@ def _check_given_answers(context) -> None:
     previous = _previous_answers(context) if "ros_distro" in given else None
     if previous is not None:  # before any other answer is read in the light of the new distro
         _refuse_switch(previous, given)
-    key = _answers_key([given])
-    if not given or key in _checked:
+    if not given or any(given is checked for checked in _checked):
         return
-    _checked.add(key)
+    _checked.append(given)
     try:
         rna.answers.check_given(given, _question_types(str(conf.get("src_path"))))
     except rna.AnswerError as error:
