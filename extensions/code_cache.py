@@ -10,8 +10,8 @@ another Python compiles anew, and one file per compiler holds its code objects. 
 that cannot be read or written is passed over; RNA_TEMPLATE_CACHE_DIR moves it, and set
 empty it turns it off.
 
-Imported by plain name, before `rna`, by the scripts Copier runs: copier_glue.py,
-after_update.py, add_node.py.
+Imported by plain name, before `rna`, by what Copier loads or runs: copier_extension.py
+(which imports copier_glue.py through it), after_update.py, add_node.py.
 """
 
 from __future__ import annotations
