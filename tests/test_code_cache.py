@@ -7,51 +7,37 @@ not read, a changed source or a cache turned off mean compiling as before.
 from __future__ import annotations
 
 import filecmp
-import json
 import marshal
 import os
 import subprocess
 import sys
-import textwrap
 from pathlib import Path
 
 import code_cache
-from support.generation import FIXED_ANSWERS, snapshot_template, subprocess_env
+from support.generation import FIXED_ANSWERS, copy_counted, snapshot_template, subprocess_env
 
-# A Copier run in a process of its own that reports how many sources Jinja and Python compiled.
-COUNTING_RUN = textwrap.dedent("""
-    import atexit, importlib.machinery, json, sys
+# What a Copier run compiled: how many Jinja sources, and which Python files.
+COUNTING = """
+    import importlib.machinery
     import jinja2
-    compiled = {"jinja": 0, "python": []}
+    counted = {"jinja": 0, "python": []}
     jinja_compile = jinja2.Environment.compile
-    def counted(self, source, name=None, filename=None, raw=False, defer_init=False):
-        compiled["jinja"] += not raw and isinstance(source, str) and "{" in source  # Jinja, not plain text
+    def counting(self, source, name=None, filename=None, raw=False, defer_init=False):
+        counted["jinja"] += not raw and isinstance(source, str) and "{" in source  # Jinja, not plain text
         return jinja_compile(self, source, name, filename, raw, defer_init)
-    jinja2.Environment.compile = counted
+    jinja2.Environment.compile = counting
     python_compile = importlib.machinery.SourceFileLoader.source_to_code
-    def counted_python(self, data, path, *args, **kwargs):
-        compiled["python"].append(path)
+    def counting_python(self, data, path, *args, **kwargs):
+        counted["python"].append(path)
         return python_compile(self, data, path, *args, **kwargs)
-    importlib.machinery.SourceFileLoader.source_to_code = counted_python
-    atexit.register(lambda: print("COMPILED " + json.dumps(compiled)))
-    from copier._cli import CopierApp
-    CopierApp.run(["copier", *sys.argv[1:]])
-""")
+    importlib.machinery.SourceFileLoader.source_to_code = counting_python
+"""
 
 
 def copy_counting(template: Path, run: Path, cache: str) -> dict:
     """A copy into run/robot (the package's name comes from its folder)."""
-    destination = run / "robot"
     run.mkdir()
-    data = run / "answers.yml"
-    data.write_text(json.dumps(FIXED_ANSWERS))
-    result = subprocess.run([sys.executable, "-c", COUNTING_RUN, "copy", "--trust", "--defaults", "--quiet",
-                             "--vcs-ref", "HEAD", "--data-file", str(data), str(template), str(destination)],
-                            env={**subprocess_env(), "RNA_TEMPLATE_CACHE_DIR": cache}, capture_output=True,
-                            text=True, timeout=120, check=False)
-    assert result.returncode == 0, result.stdout + result.stderr
-    line = next(line for line in result.stdout.splitlines() if line.startswith("COMPILED "))
-    compiled = json.loads(line.removeprefix("COMPILED "))
+    compiled = copy_counted(COUNTING, template, run / "robot", FIXED_ANSWERS, {"RNA_TEMPLATE_CACHE_DIR": cache})
     compiled["python"] = [path for path in compiled["python"] if "/extensions/" in path]
     return compiled
 

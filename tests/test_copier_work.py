@@ -8,31 +8,23 @@ renders it once per render of a package, however many files the package has.
 
 from __future__ import annotations
 
-import json
-import subprocess
-import sys
-import textwrap
 from pathlib import Path
 
 import pytest
 
-from support.generation import FIXED_ANSWERS, snapshot_template, subprocess_env
+from support.generation import FIXED_ANSWERS, copy_counted, snapshot_template
 
-# A Copier run that reports how many times the answers file's name was really rendered.
-COUNTING_RUN = textwrap.dedent("""
-    import atexit, sys
+# How many times a Copier run really rendered the answers file's name.
+COUNTING = """
     from copier._main import Worker
-    renders = 0
+    counted = 0
     render_name = Worker.answers_relpath.fget
-    def counted(self):
-        global renders
-        renders += 1
+    def counting(self):
+        global counted
+        counted += 1
         return render_name(self)
-    Worker.answers_relpath = property(counted)
-    atexit.register(lambda: print(f"RENDERS {renders}"))
-    from copier._cli import CopierApp
-    CopierApp.run(["copier", *sys.argv[1:]])
-""")
+    Worker.answers_relpath = property(counting)
+"""
 
 
 def package_answers(nodes: int) -> dict:
@@ -44,15 +36,9 @@ def package_answers(nodes: int) -> dict:
 def renders_of_the_answers_file_name(template: Path, run: Path, nodes: int) -> tuple[int, int]:
     """(renders of the answers file's name, files written) in a copy of a package with `nodes` nodes."""
     run.mkdir()
-    data = run / "answers.yml"
-    data.write_text(json.dumps(package_answers(nodes)))
     destination = run / "robot"
-    result = subprocess.run([sys.executable, "-c", COUNTING_RUN, "copy", "--trust", "--defaults", "--quiet",
-                             "--vcs-ref", "HEAD", "--data-file", str(data), str(template), str(destination)],
-                            env=subprocess_env(), capture_output=True, text=True, timeout=120, check=False)
-    assert result.returncode == 0, result.stdout + result.stderr
-    line = next(line for line in result.stdout.splitlines() if line.startswith("RENDERS "))
-    return int(line.removeprefix("RENDERS ")), sum(1 for path in destination.rglob("*") if path.is_file())
+    renders = copy_counted(COUNTING, template, destination, package_answers(nodes))
+    return renders, sum(1 for path in destination.rglob("*") if path.is_file())
 
 
 @pytest.fixture(scope="module")

@@ -7,9 +7,12 @@ are the YAML files of docs/examples, read with `example()`.
 
 from __future__ import annotations
 
+import json
 import os
 import shutil
 import subprocess
+import sys
+import textwrap
 from pathlib import Path
 
 import yaml
@@ -46,6 +49,27 @@ GIT_IDENTITY = {
 def subprocess_env() -> dict[str, str]:
     """The environment of every git and copier subprocess: a git identity, no colours."""
     return {**os.environ, **GIT_IDENTITY, "NO_COLOR": "1", "GIT_CONFIG_NOSYSTEM": "1"}
+
+
+def copy_counted(instrumentation: str, template: Path, destination: Path, answers: dict,
+                 env: dict[str, str] | None = None) -> object:
+    """`copier copy` of the template's HEAD in a Python process of its own, after `instrumentation`
+    (code that wraps what it counts into a JSON-able `counted`); returns `counted` at exit."""
+    script = textwrap.dedent(instrumentation) + textwrap.dedent("""
+        import atexit, json, sys
+        atexit.register(lambda: print("COUNTED " + json.dumps(counted)))
+        from copier._cli import CopierApp
+        CopierApp.run(["copier", *sys.argv[1:]])
+    """)
+    data = destination.parent / "answers.yml"
+    data.write_text(json.dumps(answers))
+    result = subprocess.run([sys.executable, "-c", script, "copy", "--trust", "--defaults", "--quiet",
+                             "--vcs-ref", "HEAD", "--data-file", str(data), str(template), str(destination)],
+                            env={**subprocess_env(), **(env or {})}, capture_output=True, text=True, timeout=120,
+                            check=False)
+    assert result.returncode == 0, result.stdout + result.stderr
+    line = next(line for line in result.stdout.splitlines() if line.startswith("COUNTED "))
+    return json.loads(line.removeprefix("COUNTED "))
 
 
 def git(*args: str, cwd: Path, check: bool = True) -> subprocess.CompletedProcess:
