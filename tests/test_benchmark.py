@@ -18,7 +18,7 @@ def test_a_case_named_alone_brings_the_case_it_is_compared_with():
 
     assert benchmark.selected(["nodes_50"]) == {"nodes_50", "nodes_1"}
     assert benchmark.selected(["update_20_catkin"]) == {"update_20_catkin", "copy_20_catkin"}
-    assert benchmark.selected(["default"]) == {"default", "default_cold", "floor"}
+    assert benchmark.selected(["default"]) == {"default", "default_cold", "floor", "floor_in_repository"}
     assert benchmark.selected(None) == {name for names in benchmark.CASE_GROUPS.values() for name in names}
 
 
@@ -28,12 +28,14 @@ def test_quick_mode_measures_the_default_package_against_the_floor(tmp_path):
                             capture_output=True, text=True, timeout=120, check=False)
     assert result.returncode == 0, result.stdout + result.stderr
     figures = json.loads(output.read_text())
-    assert set(figures["cases"]) == {"floor", "default", "default_cold"}
+    assert set(figures["cases"]) == {"floor", "floor_in_repository", "default", "default_cold"}
     for case in figures["cases"].values():
         (sample,) = case["samples"]
         assert sample["wall"] > 0 and sample["cpu"] > 0
-    row, cold = figures["comparisons"]
+    row, cold, checkout, own = figures["comparisons"]
     assert (row["case"], row["reference"], row["goal"]) == ("default", "floor", 1.15)
     assert (cold["case"], cold["reference"], cold["goal"]) == ("default_cold", "floor", None)
+    assert (checkout["case"], checkout["reference"]) == ("floor_in_repository", "floor")
+    assert (own["case"], own["reference"]) == ("default", "floor_in_repository")
     assert row["met"] is (row["ratio"] <= 1.15)
     assert "default package / one-file template (floor)" in result.stdout

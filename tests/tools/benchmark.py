@@ -17,7 +17,9 @@ Groups of cases (--only takes a group or a case name; --quick = the `default` gr
 run, no warm-up):
 
   default   the default package vs a one-file Copier template (the floor), and the same
-            package with no compiled code kept from earlier runs (a first run)
+            package with no compiled code kept from earlier runs (a first run); the floor
+            again in a repository of this one's files (what Copier's checkout of a
+            repository this size costs, whatever the template renders)
   node      one C++ node with every feature vs ros2-pkg-create 1.3.0 (own venv, cached;
             its older Copier's floor is measured too)
   scale     packages with 1, 10, 50 and 100 nodes
@@ -106,6 +108,12 @@ PEER_ARGS = ["--defaults", "--use-local-templates", "--template", "ros2_cpp_pkg"
 
 FLOOR_FILES = {"copier.yml": "_subdirectory: template\nname:\n  type: str\n  default: demo\n",
                "template/README.md.jinja": "# {{ name }}\n"}
+# The floor again, in a repository with every file of this one beside it (docs, tests, the
+# template's own files under template/, none of them rendered): Copier checks out a
+# template's whole repository, so this is the floor a template of this repository's size
+# starts from, whatever it renders.
+FLOOR_IN_REPOSITORY_FILES = {"copier.yml": "_subdirectory: floor\nname:\n  type: str\n  default: demo\n",
+                             "floor/README.md.jinja": "# {{ name }}\n"}
 # The floor of an update: the same, recording its answers (Copier updates only such a project).
 FLOOR_UPDATE_FILES = {**FLOOR_FILES,
                       "template/{{ _copier_conf.answers_file }}.jinja": "{{ _copier_answers|to_nice_yaml }}\n"}
@@ -187,6 +195,8 @@ class Comparison:
 COMPARISONS = (
     Comparison("default package / one-file template (floor)", "default", "floor", 1.15),
     Comparison("the same, a first run (no compiled code kept) / floor", "default_cold", "floor"),
+    Comparison("the floor in a repository of this one's files / floor", "floor_in_repository", "floor"),
+    Comparison("default package / the floor in a repository of this one's files", "default", "floor_in_repository"),
     Comparison("all-features C++ node / ros2-pkg-create 1.3.0", "node_all", "ros2_pkg_create", 1.0),
     Comparison("ros2-pkg-create / its Copier's floor (same kind of source: a folder)", "ros2_pkg_create",
                "floor_peer_dir"),
@@ -218,6 +228,8 @@ class Bench:
         self.copier = str(Path(sys.executable).with_name("copier"))
         self.template = self._template_repo(template_source)
         self.floor = self._floor_repo("floor", FLOOR_FILES)
+        self.floor_in_repository = self._template_repo(template_source, "floor-in-repository",
+                                                       FLOOR_IN_REPOSITORY_FILES)
         self.data = work / "data"
         self.data.mkdir()
         self.peer: Path | None = None
@@ -247,14 +259,18 @@ class Bench:
         measure(argv, cwd, self.env)
         shutil.rmtree(folder)
 
-    def _template_repo(self, source: Path) -> Path:
-        """The whole repository as a user's clone has it (docs and tests too), working tree included."""
-        destination = self.work / "template"
+    def _template_repo(self, source: Path, name: str = "template", replaced: dict[str, str] | None = None) -> Path:
+        """The whole repository as a user's clone has it (docs and tests too), working tree
+        included; `replaced` files (path: text) written over it."""
+        destination = self.work / name
         listed = git("ls-files", "-z", "--cached", "--others", "--exclude-standard", cwd=source).stdout
-        for name in filter(None, listed.split("\0")):
-            if (source / name).is_file():
-                (destination / name).parent.mkdir(parents=True, exist_ok=True)
-                shutil.copy2(source / name, destination / name)
+        for path in filter(None, listed.split("\0")):
+            if (source / path).is_file():
+                (destination / path).parent.mkdir(parents=True, exist_ok=True)
+                shutil.copy2(source / path, destination / path)
+        for path, text in (replaced or {}).items():
+            (destination / path).parent.mkdir(parents=True, exist_ok=True)
+            (destination / path).write_text(text)
         commit_repository(destination, f"rna-template {NEW_VERSION} (benchmark snapshot)", NEW_VERSION)
         return destination
 
@@ -290,6 +306,8 @@ class Bench:
         cases = [
             Case("floor", "default", f"one-file template (the floor), Copier {copier_version()}",
                  self.copy(self.floor, floor_data), "project/README.md"),
+            Case("floor_in_repository", "default", "the floor in a repository of this one's files",
+                 self.copy(self.floor_in_repository, floor_data), "project/README.md"),
             Case("default", "default", "default package (talker + listener)",
                  self.copy(self.template, self.data_file("default", {})), "project/project/package.xml"),
             Case("default_cold", "default", "the same, a first run: no compiled code kept",
@@ -523,7 +541,7 @@ def main(argv: list[str] | None = None) -> int:
 
 
 CASE_GROUPS = {
-    "default": ("floor", "default", "default_cold"),
+    "default": ("floor", "floor_in_repository", "default", "default_cold"),
     "node": ("node_all", "ros2_pkg_create", "floor_peer_git", "floor_peer_dir"),
     "scale": ("nodes_1", "nodes_10", "nodes_50", "nodes_100"),
     "update": ("copy_20", "update_20", "floor_copy", "floor_update"),
