@@ -2,6 +2,7 @@
 
     tests/env python tests/tools/benchmark.py [--runs N] [--warmup N] [--quick] [--only NAME ...]
                                               [--json out.json] [--template DIR] [--profile]
+                                              [--instructions]
 
 Every case is a whole `copier` process (wall time from outside, CPU time and peak RSS of
 the process tree from os.wait4), run from a local git repository of the template tagged
@@ -31,7 +32,10 @@ The template keeps compiled code between runs (extensions/code_cache.py): here i
 scratch folder, filled by one copy before the rounds; `default_cold` runs with it off.
 
 --profile adds where the time goes for the default package, 1 and 50 nodes and the updates
-(tests/tools/profiling.py). No test asserts on these figures.
+(tests/tools/profiling.py). --instructions also runs each case once under valgrind's
+callgrind and counts the instructions of its whole process tree (git included): a
+figure that does not move with the machine's load or speed, as wall time does here, but
+that leaves out the kernel's work (the disk) and what waits. No test asserts on these figures.
 """
 
 from __future__ import annotations
@@ -153,6 +157,31 @@ def measure(argv: list[str], cwd: Path, env: dict[str, str]) -> Sample:
     return Sample(wall, usage.ru_utime + usage.ru_stime, rss)
 
 
+VALGRIND = shutil.which("valgrind")
+
+
+def count_instructions(argv: list[str], cwd: Path, env: dict[str, str], scratch: Path) -> int:
+    """Run `argv` under callgrind: the instructions its process and every child executed."""
+    scratch.mkdir(parents=True, exist_ok=True)
+    command = [VALGRIND, "--tool=callgrind", "--trace-children=yes", "-q",
+               f"--callgrind-out-file={scratch}/callgrind.%p", *argv]
+    # A fixed hash seed: Python's sets and dicts of strings then do the same work every run.
+    result = subprocess.run(command, cwd=cwd, env={**env, "PYTHONHASHSEED": "0"}, stdin=subprocess.DEVNULL,
+                            capture_output=True, text=True, check=False)
+    if result.returncode != 0:
+        raise RuntimeError(f"exit code {result.returncode} under callgrind: {' '.join(argv)}\n"
+                           f"{(result.stdout + result.stderr)[-4000:]}")
+    total = callgrind_total([path.read_text() for path in scratch.glob("callgrind.*")])
+    shutil.rmtree(scratch)
+    return total
+
+
+def callgrind_total(outputs: list[str]) -> int:
+    """The instructions counted in callgrind's output files (one per process), summed."""
+    return sum(int(line.split()[1]) for output in outputs for line in output.splitlines()
+               if line.startswith("summary:"))
+
+
 # ─── Cases ────────────────────────────────────────────────────────────────────
 
 
@@ -165,16 +194,28 @@ class Case:
     produces: str  # a path (relative to the fresh folder) that must exist afterwards
     samples: list[Sample] = field(default_factory=list)
     env: dict[str, str] = field(default_factory=dict)  # over the bench's environment
+    instructions: int | None = None  # counted by callgrind, once
 
     def run(self, folder: Path, env: dict[str, str]) -> Sample:
+        return self._run_with(measure, folder, env)
+
+    def count(self, folder: Path, env: dict[str, str]) -> None:
+        self.instructions = self._run_with(
+            lambda argv, cwd, env: count_instructions(argv, cwd, env, folder.with_name(f"{folder.name}-callgrind")),
+            folder, env)
+
+    def _run_with(self, run: Callable, folder: Path, env: dict[str, str]):
         folder.mkdir(parents=True)
         argv, cwd = self.prepare(folder)
-        sample = measure(argv, cwd, {**env, **self.env})
+        result = run(argv, cwd, {**env, **self.env})
         if not (folder / self.produces).exists():
             raise RuntimeError(f"{self.name}: {self.produces} is missing after {' '.join(argv)}")
-        return sample
+        return result
 
     def median(self, attribute: str) -> float | None:
+        """The median of a measure of the samples; "instructions", the one count."""
+        if attribute == "instructions":
+            return self.instructions
         values = [getattr(s, attribute) for s in self.samples]
         return None if None in values else statistics.median(values)
 
@@ -426,7 +467,8 @@ def machine() -> dict:
 
 
 def ratio(comparison: Comparison, cases: dict[str, Case], measure: str) -> float:
-    """The ratio of the two cases' medians of `measure` ("wall" or "cpu"), each over its floor if asked."""
+    """The ratio of the two cases' medians of `measure` ("wall", "cpu", or the "instructions" counted),
+    each over its floor if asked."""
     value = cases[comparison.case].median(measure) / cases[comparison.reference].median(measure)
     if comparison.floors:
         value /= cases[comparison.floors[0]].median(measure) / cases[comparison.floors[1]].median(measure)
@@ -446,6 +488,43 @@ def comparisons(cases: dict[str, Case]) -> list[dict]:
                      "ratio": wall, "cpu_ratio": ratio(comparison, cases, "cpu"), "goal": comparison.goal,
                      "met": None if comparison.goal is None else wall <= comparison.goal})
     return rows
+
+
+def instruction_comparisons(cases: dict[str, Case]) -> list[dict]:
+    """The comparisons again, in instructions counted (the goals are the wall time's)."""
+    return [{"label": comparison.label, "case": comparison.case, "reference": comparison.reference,
+             "ratio": ratio(comparison, cases, "instructions"), "goal": comparison.goal}
+            for comparison in COMPARISONS
+            if all(name in cases and cases[name].instructions
+                   for name in (comparison.case, comparison.reference, *(comparison.floors or ())))]
+
+
+def count_cases(cases: list[Case], bench: Bench) -> None:
+    """Each case once under callgrind, two at a time (the counts do not depend on the load)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    scratch = bench.work / "counted"
+    print(f"benchmark: counting instructions under callgrind, {len(cases)} case(s), each 40 to 60 times "
+          "slower than its run", file=sys.stderr, flush=True)
+    with ThreadPoolExecutor(max_workers=min(2, os.cpu_count() or 1)) as pool:
+        for future in [pool.submit(case.count, scratch / case.name, bench.env) for case in cases]:
+            future.result()
+
+
+def print_instruction_tables(cases: list[Case], rows: list[dict]) -> None:
+    print("\ninstructions counted by callgrind, one run each, whole process tree (git included; "
+          "the kernel's work is not counted)\n")
+    print(f"| {'case':<66} | instructions (millions) |")
+    print(f"| {'-' * 66} | ----------------------: |")
+    for case in cases:
+        if case.instructions:
+            print(f"| {case.name + ': ' + case.label:<66} | {case.instructions / 1e6:23,.0f} |")
+    if rows:
+        print(f"\n| {'ratio of instructions':<68} | ratio  | goal (wall time's) |")
+        print(f"| {'-' * 68} | -----: | ------------------ |")
+        for row in rows:
+            goal = f"<= {row['goal']:.2f}" if row["goal"] is not None else ""
+            print(f"| {row['label']:<68} | {row['ratio']:5.2f}x | {goal:<18} |")
 
 
 def rss(megabytes: float | None) -> str:
@@ -483,6 +562,8 @@ def parse_arguments(argv: list[str] | None = None) -> argparse.Namespace:
                         help=f"a group or case to run (repeatable): {', '.join(names)}")
     parser.add_argument("--json", type=Path, help="also write the figures to this JSON file")
     parser.add_argument("--template", type=Path, default=ROOT, help="the template's working tree (default: here)")
+    parser.add_argument("--instructions", action="store_true",
+                        help="then count each case's instructions once under valgrind's callgrind")
     parser.add_argument("--profile", action="store_true",
                         help="then profile the default package, 1 and 50 nodes and the updates "
                              "(tests/tools/profiling.py)")
@@ -519,6 +600,15 @@ def main(argv: list[str] | None = None) -> int:
         rows = comparisons({case.name: case for case in cases})
         if arguments.runs:
             print_tables(cases, rows, arguments.runs, arguments.warmup)
+        counted_rows = []
+        if arguments.instructions:
+            if VALGRIND is None:
+                print("benchmark: valgrind is not installed (apt-get install valgrind): no instructions counted",
+                      file=sys.stderr)
+            else:
+                count_cases(cases, bench)
+                counted_rows = instruction_comparisons({case.name: case for case in cases})
+                print_instruction_tables(cases, counted_rows)
         profile = None
         if arguments.profile:
             import profiling
@@ -532,9 +622,10 @@ def main(argv: list[str] | None = None) -> int:
             "load_average": {"before": load_before, "after": os.getloadavg()},
             "cases": {case.name: {"label": case.label, "group": case.group,
                                   "median": {key: case.median(key) for key in ("wall", "cpu", "rss")},
-                                  "samples": [vars(sample) for sample in case.samples]}
-                      for case in cases if case.samples},
-            "comparisons": rows, "profile": profile,
+                                  "samples": [vars(sample) for sample in case.samples],
+                                  "instructions": case.instructions}
+                      for case in cases if case.samples or case.instructions},
+            "comparisons": rows, "instruction_comparisons": counted_rows, "profile": profile,
         }
         arguments.json.write_text(json.dumps(result, indent=2) + "\n")
     return 0
