@@ -60,3 +60,21 @@ def test_quick_mode_measures_the_default_package_against_the_floor(tmp_path):
     assert (own["case"], own["reference"]) == ("default", "floor_in_repository")
     assert row["met"] is (row["ratio"] <= 1.15)
     assert "default package / one-file template (floor)" in result.stdout
+
+
+def test_a_staged_copy_stops_where_its_stage_ends(template_dir, tmp_path):
+    """instruction_stages.py's copy: stopped before the questions, a bad answer goes unseen;
+    stopped after them, it was refused there; either way nothing was written."""
+    sys.path.insert(0, str(TOOLS))
+    import instruction_stages
+
+    def staged_copy(stage: str, answers: dict) -> subprocess.CompletedProcess:
+        return subprocess.run([sys.executable, "-c", instruction_stages.STAGED_COPY, stage, str(template_dir),
+                               str(tmp_path / stage), json.dumps({"copyright_year": 2026, **answers})],
+                              capture_output=True, text=True, timeout=120, check=False)
+
+    assert staged_copy("environment", {"ros_distro": "foxy"}).returncode == 0
+    asked = staged_copy("questions", {"ros_distro": "foxy"})
+    assert asked.returncode != 0 and "invalid answer to 'ros_distro'" in asked.stderr, asked.stderr[-2000:]
+    assert staged_copy("questions", {"ros_distro": "jazzy"}).returncode == 0
+    assert list(tmp_path.iterdir()) == []
