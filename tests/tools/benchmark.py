@@ -217,7 +217,7 @@ class Case:
         if attribute == "instructions":
             return self.instructions
         values = [getattr(s, attribute) for s in self.samples]
-        return None if None in values else statistics.median(values)
+        return None if not values or None in values else statistics.median(values)
 
     def spread(self) -> tuple[float, float]:
         walls = [s.wall for s in self.samples]
