@@ -25,22 +25,17 @@ def test_a_case_named_alone_brings_the_case_it_is_compared_with():
     assert benchmark.selected(None) == {name for names in benchmark.CASE_GROUPS.values() for name in names}
 
 
-def benchmark_module():
+@pytest.mark.skipif(shutil.which("valgrind") is None, reason="valgrind is not installed")
+def test_instructions_are_counted_in_every_process_of_the_tree(tmp_path):
     sys.path.insert(0, str(TOOLS))
     import benchmark
 
-    return benchmark
-
-
-@pytest.mark.skipif(shutil.which("valgrind") is None, reason="valgrind is not installed")
-def test_instructions_are_counted_in_every_process_of_the_tree(tmp_path):
-    benchmark = benchmark_module()
     alone = benchmark.count_instructions(["/bin/true"], tmp_path, {}, tmp_path / "one")
     with_child = benchmark.count_instructions(["/bin/sh", "-c", "/bin/true; /bin/true"], tmp_path, {},
                                               tmp_path / "tree")
     assert alone > 0
     assert with_child > 2 * alone  # the shell's own and both children's
-    assert sorted(path.name for path in tmp_path.iterdir()) == []  # callgrind's files are gone
+    assert list(tmp_path.iterdir()) == []  # callgrind's files are gone
 
 
 def test_quick_mode_measures_the_default_package_against_the_floor(tmp_path):

@@ -167,7 +167,7 @@ def count_instructions(argv: list[str], cwd: Path, env: dict[str, str], scratch:
                f"--callgrind-out-file={scratch}/callgrind.%p", *argv]
     # A fixed hash seed: Python's sets and dicts of strings then do the same work every run.
     result = subprocess.run(command, cwd=cwd, env={**env, "PYTHONHASHSEED": "0"}, stdin=subprocess.DEVNULL,
-                            capture_output=True, text=True, check=False)
+                            capture_output=True, text=True, check=False, timeout=1800)
     if result.returncode != 0:
         raise RuntimeError(f"exit code {result.returncode} under callgrind: {' '.join(argv)}\n"
                            f"{(result.stdout + result.stderr)[-4000:]}")
