@@ -500,10 +500,18 @@ def instruction_comparisons(cases: dict[str, Case]) -> list[dict]:
 
 
 def count_cases(cases: list[Case], bench: Bench) -> None:
-    """Each case once under callgrind, two at a time (the counts do not depend on the load)."""
+    """Each case once under callgrind, two at a time (the counts do not depend on the load).
+
+    Each case first runs once uncounted: the template's compiled code is kept per template
+    file, so a case that is the first of its kind (a catkin package, a C++ node) would
+    otherwise count the compiling, and which case comes first would change the counts.
+    """
     from concurrent.futures import ThreadPoolExecutor
 
     scratch = bench.work / "counted"
+    for case in cases:
+        case.run(scratch / f"{case.name}-warm-up", bench.env)
+        shutil.rmtree(scratch / f"{case.name}-warm-up")
     print(f"benchmark: counting instructions under callgrind, {len(cases)} case(s), each 40 to 60 times "
           "slower than its run", file=sys.stderr, flush=True)
     with ThreadPoolExecutor(max_workers=min(2, os.cpu_count() or 1)) as pool:
