@@ -421,28 +421,60 @@ def _compile_each_source_once_per_process(environment) -> None:
     key is the source, its name and everything of the environment that the compiler
     reads (syntax, options, extensions, the names of filters and tests, Jinja's version).
     A hit is preprocessed all the same (Copier's yield tag resets its state there).
+
+    A line of plain text (a choice's label or value, a question's type, a path's part:
+    about a hundred a copy, a sixth of a millisecond each to compile) is not kept: some of
+    it names the destination. Jinja compiles every such line to the same code but for the
+    text and the columns it takes, so its code is a kept stand-in's of the same width,
+    with the text put in place.
     """
     compile_source = environment.compile
     codes = None
 
     def compile(source, name=None, filename=None, raw=False, defer_init=False):  # noqa: A001 - Jinja's name
         nonlocal codes
-        if raw or not isinstance(source, str) or not _has_jinja_syntax(environment, source):
-            # Plain text compiles in no time, and some of it names the destination (a
-            # question's choices): kept, it would only grow the cache.
+        if raw or not isinstance(source, str):
             return compile_source(source, name, filename, raw, defer_init)
         if codes is None:  # the settings are complete once Copier compiles
             codes = code_cache.store("jinja", _compiler_signature(environment))
-        key = (source, name, defer_init)
+        plain = not _has_jinja_syntax(environment, source)
+        if plain and not _is_one_plain_line(source, name, filename, defer_init):
+            return compile_source(source, name, filename, raw, defer_init)
+        compiled = _stand_in(source) if plain else source
+        key = (compiled, name, defer_init)
         code = codes.get(key)
-        if code is not None:
-            environment.preprocess(source, name, filename)
-            return code
-        code = compile_source(source, name, filename, raw, defer_init)
-        codes.put(key, code)
-        return code
+        if code is None:
+            code = compile_source(compiled, name, filename, raw, defer_init)
+            codes.put(key, code)
+            if not plain:
+                return code
+        environment.preprocess(source, name, filename)
+        return _with_constant(code, compiled, source) if plain else code
 
     environment.compile = compile
+
+
+def _stand_in(line: str) -> str:
+    """A line that names nothing, as wide as `line` in Python's source (Jinja's code yields
+    it as a literal, and Python's code records the columns, in UTF-8 bytes, of each expression)."""
+    return "x" * (len(repr(line).encode()) - 2)
+
+
+def _is_one_plain_line(source: str, name, filename, defer_init) -> bool:
+    """Whether Jinja's code for this plain text is the stand-in line's with the text in its
+    place: one line (Jinja rewrites line breaks), not empty, compiled by `from_string`."""
+    return bool(source) and "\n" not in source and "\r" not in source and name is None and filename is None \
+        and not defer_init
+
+
+def _with_constant(code: types.CodeType, old: str, new: str) -> types.CodeType:
+    """`code`, with the string constant `old` replaced by `new` in it and its nested code."""
+    def replaced(constant):
+        if isinstance(constant, types.CodeType):
+            return _with_constant(constant, old, new)
+        return new if type(constant) is str and constant == old else constant
+
+    return code.replace(co_consts=tuple(replaced(constant) for constant in code.co_consts))
 
 
 def _has_jinja_syntax(environment, source: str) -> bool:

@@ -14,6 +14,11 @@ import sys
 from pathlib import Path
 
 import code_cache
+import pytest
+from copier._main import Worker
+from hypothesis import example, given, settings
+from hypothesis import strategies as st
+
 from support.generation import FIXED_ANSWERS, copy_counted, snapshot_template, subprocess_env
 
 # What a Copier run compiled: how many Jinja sources, and which Python files.
@@ -147,3 +152,26 @@ def test_the_template_folder_is_left_without_pycache(tmp_path):
         subprocess.run([sys.executable, "-c", script], env=env, check=True, timeout=60)
     assert {path.name.partition(".")[0] for path in template.rglob("*.pyc")} <= {"code_cache"}  # imported first
     assert list((tmp_path / "cache").glob("python-*.marshal"))
+
+
+@pytest.fixture(scope="module")
+def copier_environment(template_folder, tmp_path_factory):
+    """The Jinja environment of a Copier worker on this template, the glue's compiling in it."""
+    return Worker(src_path=str(template_folder), dst_path=tmp_path_factory.mktemp("robot"), unsafe=True).jinja_env
+
+
+ONE_LINE = st.text(st.characters(blacklist_characters="\r\n"), min_size=1).filter(
+    lambda text: not any(start in text for start in ("{{", "{%", "{#")))
+
+
+@settings(max_examples=300, deadline=None)
+@given(text=ONE_LINE)
+@example(text="xxxx")  # a stand-in line itself
+@example(text="a separate package, robot_interfaces")
+@example(text="}} %} #} {")
+@example(text="'\"\\\x00\udc80 ✓")
+def test_a_line_of_plain_text_gets_the_code_jinja_compiles_for_it(copier_environment, text):
+    # The glue's code (a kept stand-in line's code with the text in place) against Jinja's own.
+    compiled = copier_environment.compile(text)
+    assert compiled == type(copier_environment).compile(copier_environment, text)
+    assert copier_environment.from_string(text).render() == text
