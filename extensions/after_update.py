@@ -23,7 +23,7 @@ import code_cache  # noqa: E402 - next to this file
 
 code_cache.import_from(HERE)
 from rna import Package, build_package  # noqa: E402 - the template's own package, next to this file
-from rna.update import blocks, config_merge, drift, kept, merge, protect, renames  # noqa: E402
+from rna.update import blocks, config_merge, drift, kept, merge, protect, rename_answers, renames  # noqa: E402
 from rna.update.project import Project, Render, render  # noqa: E402
 from rna.update.summary import Report, changes, summary  # noqa: E402
 
@@ -69,14 +69,14 @@ def main(answers_file: str, project_root: Path | None = None, template: Path = H
     project = Project(project_root or Path.cwd(), answers_file, conflict)
     old_answers = yaml.safe_load(project.committed(answers_file) or "{}") or {}
     new_answers = yaml.safe_load(project.text(answers_file) or "{}") or {}
-    renamed = renames.renames(new_answers)  # new name -> old name, said by the answers once
-    if renamed and (consumed := renames.without_renames(project.text(answers_file))) is not None:
+    renamed = rename_answers.renames(new_answers)  # new name -> old name, said by the answers once
+    if renamed and (consumed := rename_answers.without_renames(project.text(answers_file))) is not None:
         project.write(answers_file, consumed)
     report = Report()
     renders = renders or kept.pointed(template)
     with tempfile.TemporaryDirectory(prefix="rna-update-") as scratch:
         old = render_of("old", old_answers, renders, template, scratch)
-        new_answers = renames.without_keys(new_answers)  # the renames are this update's, not answers
+        new_answers = rename_answers.without_keys(new_answers)  # the renames are this update's, not answers
         new = render_of("new", new_answers, renders, template, scratch)
         packages = (package_of(old_answers, report), package_of(new_answers, report))
         handled = set()

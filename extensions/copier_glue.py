@@ -60,7 +60,7 @@ try:
     import rna.names
     import rna.update.kept
     import rna.update.refusals
-    import rna.update.renames
+    import rna.update.rename_answers
     import rna.update.resolve
     import rna.wording
     import rna.workspace
@@ -356,7 +356,7 @@ class RnaExtension(ContextHook):
             _check_given_answers(context)
             return
         previous = _previous_answers(context)
-        renamed = rna.update.renames.rename_error(previous, context, update=_operation() != "copy")
+        renamed = rna.update.rename_answers.rename_error(previous, context, update=_operation() != "copy")
         if renamed is not None:
             raise UserMessageError(f"rna-template: invalid answer to 'nodes': {renamed} (nothing was written)")
         if previous is not None:  # an update: answers were in the destination before this run

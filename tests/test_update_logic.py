@@ -8,7 +8,7 @@ import rna
 import yaml
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from rna.update import blocks, config_merge, drift, kept, merge, protect, refusals, renames, resolve
+from rna.update import blocks, config_merge, drift, kept, merge, protect, refusals, rename_answers, renames, resolve
 from support.generation import VALID
 
 ROS2_CONFIG = "/**:\n  ros__parameters:\n    # Gain\n    gain: {gain}\n\n    frame_id: {frame}\n\n"
@@ -312,7 +312,7 @@ def test_a_rename_must_name_a_node_of_the_package_being_updated():
     previous = {"nodes": [{"name": "driver"}, {"name": "monitor"}]}
 
     def error(nodes, before=previous, update=True):
-        return renames.rename_error(before, {"nodes": nodes}, update=update)
+        return rename_answers.rename_error(before, {"nodes": nodes}, update=update)
 
     assert error([{"name": "planner", "renamed_from": "driver"}, "monitor"]) is None
     assert error(["driver", "monitor"]) is None
@@ -329,10 +329,10 @@ def test_the_answers_file_records_the_new_name_only_with_its_checksum():
                "nodes": [{"name": "planner", "language": "cpp", "renamed_from": "driver"}]}
     text = (f"# Written by Copier\n{resolve.CHECKSUM_LINE}{resolve.checksum(answers)}\n"
             + resolve.answers_yaml(answers))
-    consumed = renames.without_renames(text)
+    consumed = rename_answers.without_renames(text)
     assert "renamed_from" not in consumed and consumed.startswith("# Written by Copier\n")
     assert resolve.edited_by_hand(consumed) is False
-    assert renames.without_renames(consumed) is None
+    assert rename_answers.without_renames(consumed) is None
 
 
 def test_a_renamed_node_without_a_language_keeps_the_one_it_had():

@@ -27,7 +27,7 @@ import yaml
 
 from .. import distros
 
-RENAMED_FROM = "renamed_from"  # a node's old name, during the update that renames it (renames.py)
+RENAMED_FROM = "renamed_from"  # a node's old name, during the update that renames it (rename_answers.py)
 CHECKSUM_LINE = "# rna-template checksum of the answers below: "
 _CHECKSUM = re.compile(r"^" + re.escape(CHECKSUM_LINE) + r"([0-9a-f]+)\s*$", re.MULTILINE)
 
