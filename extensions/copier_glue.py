@@ -45,25 +45,26 @@ try:
     import code_cache
 
     code_cache.import_from(_HERE)
-    import rna
-    import rna.configs
-    import rna.dialects
-    import rna.distros
-    import rna.dialects.lines
-    import rna.dialects.python
-    import rna.dialog
-    import rna.graph
-    import rna.replies
-    import rna.lab
-    import rna.model
-    import rna.layout
-    import rna.names
-    import rna.update.kept
-    import rna.update.refusals
-    import rna.update.rename_answers
-    import rna.update.resolve
-    import rna.wording
-    import rna.workspace
+    with code_cache.dataclass_methods_kept():
+        import rna
+        import rna.configs
+        import rna.dialects
+        import rna.distros
+        import rna.dialects.lines
+        import rna.dialects.python
+        import rna.dialog
+        import rna.graph
+        import rna.replies
+        import rna.lab
+        import rna.model
+        import rna.layout
+        import rna.names
+        import rna.update.kept
+        import rna.update.refusals
+        import rna.update.rename_answers
+        import rna.update.resolve
+        import rna.wording
+        import rna.workspace
 finally:
     sys.path.remove(str(_HERE))
 

@@ -6,6 +6,7 @@ not read, a changed source or a cache turned off mean compiling as before.
 
 from __future__ import annotations
 
+import dataclasses
 import filecmp
 import marshal
 import os
@@ -175,3 +176,41 @@ def test_a_line_of_plain_text_gets_the_code_jinja_compiles_for_it(copier_environ
     compiled = copier_environment.compile(text)
     assert compiled == type(copier_environment).compile(copier_environment, text)
     assert copier_environment.from_string(text).render() == text
+
+
+def _record_class():
+    @dataclasses.dataclass(frozen=True)
+    class Record:
+        name: str
+        rate: float = 10.0
+        topics: tuple = dataclasses.field(default_factory=tuple)
+
+    return Record
+
+
+METHODS = ("__init__", "__repr__", "__eq__", "__hash__", "__setattr__", "__delattr__")
+
+
+def test_dataclass_methods_come_compiled_from_the_store_as_dataclasses_compiles_them(monkeypatch):
+    made_by_dataclasses = _record_class()
+    compiled = []
+
+    def counting(*args, **kwargs):
+        compiled.append(args)
+        return compile(*args, **kwargs)
+
+    monkeypatch.setattr(code_cache, "compile", counting, raising=False)
+    with code_cache.dataclass_methods_kept():
+        first = _record_class()
+    with code_cache.dataclass_methods_kept():
+        again = _record_class()
+    assert "exec" not in vars(dataclasses)  # the builtin again, for everyone else
+    assert len(compiled) <= len(METHODS)  # the first class compiled at most each method once, the second nothing
+    for record in (first, again):
+        for method in METHODS:
+            assert getattr(record, method).__code__ == getattr(made_by_dataclasses, method).__code__, method
+        made = record("driver")
+        assert made == record("driver", 10.0, ()) and made != record("planner")
+        assert repr(made).endswith("Record(name='driver', rate=10.0, topics=())")
+        with pytest.raises(dataclasses.FrozenInstanceError):
+            made.name = "planner"
