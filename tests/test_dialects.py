@@ -6,6 +6,8 @@ import ast
 import textwrap
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from rna import wording
 from rna.dialects import Ros2Python, cpp, lines, python
@@ -269,3 +271,29 @@ def test_an_import_alias_too_long_for_its_line_goes_on_the_next():
     assert max(len(line) for line in block.splitlines()) <= 99
     assert block.splitlines()[1:3] == [f"    {name} as", f"    {alias},"]
     compile(block, "imports", "exec")
+
+
+def _depth_char_by_char(text: str, depth: int = 0) -> int:
+    """The parenthesis depth as a reader counts it, one character after the other (the oracle)."""
+    quote, escaped = "", False
+    for index, char in enumerate(text):
+        if escaped:
+            escaped = False
+        elif quote:
+            escaped = char == "\\"
+            quote = "" if char == quote else quote
+        elif char in "'\"":
+            quote = char
+        elif char == "#" or text.startswith("//", index):
+            break
+        elif char in "([":
+            depth += 1
+        elif char in ")]":
+            depth -= 1
+    return depth
+
+
+@settings(max_examples=500, deadline=None)
+@given(text=st.text(alphabet="()[]'\"#/\\ a", max_size=40), depth=st.integers(-2, 3))
+def test_the_bracket_depth_skips_strings_escapes_and_comments_as_a_reader_does(text, depth):
+    assert lines._depth(text, depth) == _depth_char_by_char(text, depth)

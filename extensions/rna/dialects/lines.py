@@ -51,6 +51,7 @@ LIMITS = {"cpp": (100, 2), "python": (99, 4)}
 _ANY_MARKER = re.compile(f"[{BREAK}{SPLIT}{OPTIONAL}{OPTIONAL_END}{ALTERNATIVE}{WRAP}{_NESTED}]")
 # A line without brackets leaves the parenthesis depth as it was.
 _BRACKETS = re.compile(r"[()\[\]]")
+_DEPTH_TOKENS = re.compile(r"""[()\[\]'"#\\]|//""")  # what _depth looks at
 
 _OPTIONAL_WORDS = re.compile(
     f"{OPTIONAL}[^{OPTIONAL_END}{ALTERNATIVE}]*(?:{ALTERNATIVE}([^{OPTIONAL_END}]*))?{OPTIONAL_END}")
@@ -181,19 +182,24 @@ def _nested(line: str, language: str, inside: bool) -> list[str]:
 
 
 def _depth(text: str, depth: int = 0) -> int:
-    """The parenthesis depth after `text` (strings and comments skipped), starting at `depth`."""
+    """The parenthesis depth after `text` (strings and comments skipped), starting at `depth`.
+
+    Only the characters that matter are visited (every generated line passes here)."""
     if not _BRACKETS.search(text):
         return depth
-    quote, escaped = "", False
-    for index, char in enumerate(text):
-        if escaped:
-            escaped = False
-        elif quote:
-            escaped = char == "\\"
-            quote = "" if char == quote else quote
-        elif char in "'\"":
+    quote, escaped = "", -1  # escaped: the index of the character a backslash escapes
+    for token in _DEPTH_TOKENS.finditer(text):
+        char = token[0]
+        if token.start() == escaped:
+            continue
+        if quote:
+            if char == "\\":
+                escaped = token.start() + 1
+            elif char == quote:
+                quote = ""
+        elif char in ("'", '"'):
             quote = char
-        elif char == "#" or text.startswith("//", index):
+        elif char in ("#", "//"):
             break
         elif char in "([":
             depth += 1
