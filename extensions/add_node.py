@@ -20,7 +20,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import code_cache  # noqa: E402 - next to this file
 
 code_cache.import_from(Path(__file__).resolve().parent)
-from rna import build_package, integrate  # noqa: E402 - the template's own package, next to this file
+with code_cache.dataclass_methods_kept():
+    from rna import build_package, integrate  # the template's own package, next to this file
 
 
 def main(project: Path, answers_file: str) -> int:

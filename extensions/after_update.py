@@ -22,10 +22,11 @@ sys.path.insert(0, str(HERE))
 import code_cache  # noqa: E402 - next to this file
 
 code_cache.import_from(HERE)
-from rna import Package, build_package  # noqa: E402 - the template's own package, next to this file
-from rna.update import blocks, config_merge, drift, kept, merge, protect, rename_answers, renames  # noqa: E402
-from rna.update.project import Project, Render, render  # noqa: E402
-from rna.update.summary import Report, changes, summary  # noqa: E402
+with code_cache.dataclass_methods_kept():
+    from rna import Package, build_package  # the template's own package, next to this file
+    from rna.update import blocks, config_merge, drift, kept, merge, protect, rename_answers, renames
+    from rna.update.project import Project, Render, render
+    from rna.update.summary import Report, changes, summary
 
 MARKERS = ("<<<<<<< before updating", ">>>>>>> after updating")
 
