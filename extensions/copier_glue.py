@@ -249,12 +249,23 @@ def lab() -> dict:
 
 def git_config(key: str) -> str:
     """The user's git setting (user.name, user.email) as a default answer, or ""."""
+    return _git_user_settings().get(key, "")
+
+
+@functools.cache  # one git process for both answers' defaults (a glue load lasts one Copier worker)
+def _git_user_settings() -> dict[str, str]:
+    """The user's `user.*` git settings, the last value of each (as `git config --get` reads it)."""
     try:
-        result = subprocess.run(["git", "config", "--get", key], capture_output=True,
+        result = subprocess.run(["git", "config", "-z", "--get-regexp", r"^user\."], capture_output=True,
                                 text=True, timeout=5, check=False)
     except (OSError, subprocess.SubprocessError):
-        return ""
-    return result.stdout.strip()
+        return {}
+    settings = {}
+    for entry in result.stdout.split("\0"):
+        key, _, value = entry.partition("\n")
+        if key:
+            settings[key] = value.strip()
+    return settings
 
 
 def in_git_work_tree(path) -> bool:

@@ -142,6 +142,24 @@ def test_defaults_make_a_talker_and_a_listener(make_package):
     assert set(launched_nodes(package / "launch" / "rna_demo.launch.xml")) == {"talker", "listener"}
 
 
+def test_the_maintainer_defaults_to_the_users_git_identity(template_folder, tmp_path, monkeypatch):
+    import copier
+
+    home = tmp_path / "home"
+    home.mkdir()
+    # The last of several values is the one git reads, as `git config --get` does.
+    (home / ".gitconfig").write_text("[user]\n\tname = Grace Hopper\n\temail = old@example.com\n"
+                                     "\temail = grace@example.com\n")
+    monkeypatch.setenv("HOME", str(home))
+    for variable in ("XDG_CONFIG_HOME", "GIT_CONFIG_GLOBAL"):
+        monkeypatch.delenv(variable, raising=False)
+    copier.run_copy(str(template_folder), str(tmp_path / "robot"), data={"copyright_year": 2026}, defaults=True,
+                    unsafe=True, quiet=True, vcs_ref="HEAD")
+    package = parse_package(str(tmp_path / "robot" / "robot" / "package.xml"))
+    assert [(person.name, person.email) for person in package.maintainers] == [("Grace Hopper", "grace@example.com")]
+    assert answers_of(tmp_path / "robot")["copyright_holder"] == "Grace Hopper"
+
+
 def test_launch_file_runs_components_standalone_or_in_a_container(make_package):
     """container:=true loads each component, with its config, into one container instead of its executable."""
     answers = example("camera_components", nodes=[*example("camera_components")["nodes"],
