@@ -157,11 +157,15 @@ def dataclass_methods_kept():
             source = code
         return builtins.exec(source, globals, locals)
 
+    before = vars(dataclasses).get("exec")  # another's, when this is nested in it
     dataclasses.exec = exec_kept  # found before the builtin by the module's own calls
     try:
         yield
     finally:
-        del dataclasses.exec
+        if before is None:
+            del dataclasses.exec
+        else:
+            dataclasses.exec = before
 
 
 def import_from(root: Path) -> None:
