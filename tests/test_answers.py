@@ -138,6 +138,8 @@ BROKEN = [
                                                 "lifecycle": True, "parameters": ["autostart=true"]}]),
      "nodes", "the parameter a lifecycle component starts itself by and parameter 'autostart'"),
     (node(parameters=["lambda=1"]), "nodes", "Python keyword"),
+    (answers(ros_distro="noetic", build_type="catkin", nodes=[{"name": "a", "parameters": ["l=1.0"]}]),
+     "nodes", "self.l in Python, which flake8 refuses as ambiguous (E741)"),
     (node(parameters=[{"name": "big", "default": 2**63}]), "nodes", "64-bit integer"),
     (node(parameters=[{"name": "big", "type": "int[]", "default": [1, -2**63 - 1]}]), "nodes", "64-bit integer"),
     (node(parameters=[{"name": "r", "default": 1, "range": [0, 2**64]}]), "nodes", "64-bit integer"),

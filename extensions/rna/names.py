@@ -188,6 +188,9 @@ def parameter_name_error(name: object, ros: int = 2) -> str | None:
     if ros == 2 and name in ROS2_DECLARED_PARAMETERS:
         return f"parameter '{name}' is declared by ROS 2 itself on every node"
     # ROS 1 nodes keep each parameter in a member named after it (self.<name>, <name>_).
+    if ros == 1 and name in AMBIGUOUS_NAMES:
+        return (f"parameter '{name}': a ROS 1 node keeps it in a member named after it, self.{name} in Python, "
+                "which flake8 refuses as ambiguous (E741); give it a longer name")
     return keyword_error(name)
 
 
