@@ -402,7 +402,7 @@ def _compile_each_string_once(environment) -> None:
 
     Such a template's globals are the environment's (Jinja chains them behind an empty map
     of its own, which nothing here fills): each render copies them into its context, and a
-    chain copies in Python, key by key (a fifth of the questions' time, ~270 renders).
+    chain copies in Python, key by key (64 million instructions of a default copy's 2,100).
     """
     compile_string = environment.from_string
     compiled = {}
