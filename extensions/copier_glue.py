@@ -467,8 +467,12 @@ def _compile_each_source_once_per_process(environment) -> None:
             codes.put(key, code)
             if not plain:
                 return code
+        if plain:
+            code = _with_constant(code, compiled, source)
+            if code is None:  # another Jinja, whose code does not hold the line as one constant
+                return compile_source(source, name, filename, raw, defer_init)
         environment.preprocess(source, name, filename)
-        return _with_constant(code, compiled, source) if plain else code
+        return code
 
     environment.compile = compile
 
@@ -486,14 +490,24 @@ def _is_one_plain_line(source: str, name, filename, defer_init) -> bool:
         and not defer_init
 
 
-def _with_constant(code: types.CodeType, old: str, new: str) -> types.CodeType:
-    """`code`, with the string constant `old` replaced by `new` in it and its nested code."""
-    def replaced(constant):
-        if isinstance(constant, types.CodeType):
-            return _with_constant(constant, old, new)
-        return new if type(constant) is str and constant == old else constant
+def _with_constant(code: types.CodeType, old: str, new: str) -> types.CodeType | None:
+    """`code`, with the string constant `old` replaced by `new` in it and its nested code;
+    None when `old` is in none of them."""
+    found = False
 
-    return code.replace(co_consts=tuple(replaced(constant) for constant in code.co_consts))
+    def replaced(constant):
+        nonlocal found
+        if isinstance(constant, types.CodeType):
+            nested = _with_constant(constant, old, new)
+            found = found or nested is not None
+            return constant if nested is None else nested
+        if type(constant) is str and constant == old:
+            found = True
+            return new
+        return constant
+
+    constants = tuple(replaced(constant) for constant in code.co_consts)
+    return code.replace(co_consts=constants) if found else None
 
 
 def _has_jinja_syntax(environment, source: str) -> bool:

@@ -214,3 +214,14 @@ def test_dataclass_methods_come_compiled_from_the_store_as_dataclasses_compiles_
         assert repr(made).endswith("Record(name='driver', rate=10.0, topics=())")
         with pytest.raises(dataclasses.FrozenInstanceError):
             made.name = "planner"
+
+
+def test_code_that_does_not_hold_the_stand_in_line_is_not_taken_for_it():
+    import copier_glue
+
+    code = compile("yield_me = 'a line'", "<test>", "exec")
+    assert copier_glue._with_constant(code, "xxxx", "text") is None  # the caller compiles the text itself
+    replaced = copier_glue._with_constant(compile("def f():\n    return 'xxxx'\n", "<test>", "exec"), "xxxx", "text")
+    namespace = {}
+    exec(replaced, namespace)
+    assert namespace["f"]() == "text"
