@@ -19,6 +19,7 @@ from dataclasses import dataclass
 from . import catalogue, distros, names
 from .answers.nodes import Types, parse_node
 from .interfaces import InterfaceType
+from .model import CALLBACK_GROUP_TYPES, DEFAULT_EXECUTOR, EXECUTORS
 from .parameters import SCALAR_TYPES
 from .update.resolve import RENAMED_FROM
 
@@ -60,6 +61,8 @@ FLAGS = {"lifecycle": "Lifecycle node", "autostart": "Configured and activated b
          "component": "Component (rclcpp_components)",
          "diagnostics": "Diagnostics (diagnostic_updater, on /diagnostics)"}
 BACK = "(empty: back)"  # a name left empty adds nothing
+# Keys of a node besides its endpoints and flags, changed through menu entries of their own.
+CALLBACK_KEYS = ("subscribers", "service_servers", "service_clients", "action_servers", "action_clients", "timers")
 ADD_NODE = "Add a node"
 DONE = "Done"
 
@@ -115,6 +118,25 @@ def node_line(node: Mapping) -> str:
     language = distros.LANGUAGE_NAMES.get(str(node.get("language")), "")
     text = f"{node.get('name')}" + (f" ({language})" if language else "")
     return text + (": " + ", ".join(counts) if counts else ": nothing yet")
+
+
+def callback_names(node: Mapping) -> list[str]:
+    """The names a callback group's members may be given: the node's endpoints with callbacks, as written."""
+    found = []
+    for key in CALLBACK_KEYS:
+        for entry in node.get(key) or []:
+            text = entry_text(key, entry)
+            found.append(timer_name(entry) if key == "timers" else text.split(":", 1)[0])
+    return found
+
+
+def group_text(group: object) -> str:
+    """A callback group in one line: `requests (reentrant): reset, dock`."""
+    if not isinstance(group, Mapping):
+        return str(group)
+    members = group.get("members")
+    members = ", ".join(map(str, members)) if isinstance(members, list) else str(members)
+    return f"{group.get('name')} ({group.get('type') or 'mutually_exclusive'}): {members}"
 
 
 def short_endpoint(name: str, value: str) -> str:
@@ -288,6 +310,9 @@ class Dialog:
             for flag in self.flags(node):
                 choices.append(f"{FLAGS[flag]}: {'yes' if node.get(flag) else 'no'}")
                 actions.append(("flag", flag))
+            for label, action in self.threading_entries(node, message):
+                choices.append(label)
+                actions.append(action)
             choices.append(f"Done with {node['name']}")
             actions.append(("done", None))
             self.ask.say(fit(f"Node {node_line(node)}"))
@@ -310,6 +335,100 @@ class Dialog:
                 self._change(node, "language", self._language(str(node.get("language"))))
             elif action == "flag":
                 self._change(node, what, not node.get(what))
+            elif action == "executor":
+                self.change_executor(node)
+            elif action == "add_group":
+                self.add_callback_group(node)
+            elif action == "add_remapping":
+                self.add_remapping(node)
+            elif action in ("remove_group", "remove_remapping"):
+                self._remove(node, "callback_groups" if action == "remove_group" else "remappings", what)
+
+    def threading_entries(self, node: Mapping, message: str) -> list[tuple[str, tuple]]:
+        """Menu entries for the executor, callback groups (ROS 2) and remappings: (label, action)."""
+        executor = node.get("executor") or DEFAULT_EXECUTOR
+        threads = f", {node['threads']} threads" if node.get("threads") else ""
+        entries = [(f"Executor: {executor}{threads}", ("executor", None))]
+        if self.rules.types.ros == 2:
+            entries.append(("Add a callback group", ("add_group", None)))
+            entries += [(fit(f"Remove callback group {group_text(group)}", choice_width(message)),
+                         ("remove_group", index)) for index, group in enumerate(node.get("callback_groups") or [])]
+        entries.append(("Add a remapping (launch file)", ("add_remapping", None)))
+        entries += [(fit(f"Remove remapping {source} -> {target}", choice_width(message)), ("remove_remapping", source))
+                    for source, target in (node.get("remappings") or {}).items()]
+        return entries
+
+    def change_executor(self, node: dict) -> None:
+        """Pick the executor among those the node's language and distro have; a multi-threaded one's threads."""
+        offered = [executor for executor in EXECUTORS
+                   if not self.rules.node_error({**node, "executor": executor, "threads": None})]
+        executor = self.ask.select("Executor the node spins on", offered,
+                                   default=node.get("executor") or DEFAULT_EXECUTOR)
+        if executor not in offered:
+            return
+        threads = None
+        if executor == "multi_threaded":
+            answer = self.ask.text("Threads (empty: one per core)", default=str(node.get("threads") or ""),
+                                   validate=optional(lambda text: None if text.isdigit() and self.rules.node_error(
+                                       {**node, "executor": executor, "threads": int(text)}) is None
+                                       else "a whole number of threads, 1 or more")).strip()
+            threads = int(answer) if answer else None
+        changed = {key: value for key, value in node.items() if key not in ("executor", "threads")}
+        if executor != DEFAULT_EXECUTOR:
+            changed["executor"] = executor
+        if threads:
+            changed["threads"] = threads
+        error = self.rules.node_error(changed)
+        if error:
+            self.ask.say(error)
+            return
+        node.clear()
+        node.update(changed)
+
+    def add_callback_group(self, node: dict) -> None:
+        """A name, a type, then the members: the node's endpoints with callbacks, comma-separated."""
+        taken = {group.get("name") for group in node.get("callback_groups") or [] if isinstance(group, Mapping)}
+        name = self.ask.text(f"Callback group name {BACK}", validate=optional(
+            lambda answer: names.identifier_error(answer, "callback group")
+            or (f"there is a callback group '{answer}' already" if answer in taken else None))).strip()
+        if not name:
+            return
+        kind = self.ask.select("Its callbacks run", ["mutually_exclusive (one at a time)",
+                                                     "reentrant (side by side)"]).split(" ", 1)[0]
+        if kind not in CALLBACK_GROUP_TYPES:
+            return
+
+        def with_group(answer: str) -> dict:
+            members = [part.strip() for part in answer.split(",") if part.strip()]
+            group = {"name": name, "members": members}
+            if kind != "mutually_exclusive":
+                group["type"] = kind
+            return {**node, "callback_groups": [*(node.get("callback_groups") or []), group]}
+
+        answer = self.ask.text("Its members, comma-separated (e.g. " + ", ".join(callback_names(node)[:2] or ["reset"])
+                               + ")", complete=callback_names(node),
+                               validate=lambda text: self.rules.node_error(with_group(text)))
+        node["callback_groups"] = with_group(answer)["callback_groups"]
+
+    def add_remapping(self, node: dict) -> None:
+        """A name the node uses, then the name the launch file gives it instead."""
+        source = self.ask.text(f"Name to remap {BACK}", complete=[*callback_names(node), *(
+            entry_text("publishers", entry).split(":", 1)[0] for entry in node.get("publishers") or [])],
+            validate=optional(lambda answer: names.topic_name_error(answer, "remapped"))).strip()
+        if not source:
+            return
+        target = self.ask.text(f"Remap {source} to", validate=lambda answer: self.rules.node_error(
+            {**node, "remappings": {**(node.get("remappings") or {}), source: answer.strip()}})).strip()
+        node["remappings"] = {**(node.get("remappings") or {}), source: target}
+
+    @staticmethod
+    def _remove(node: dict, key: str, which: object) -> None:
+        if key == "callback_groups":
+            del node[key][which]
+        else:
+            node[key] = {source: target for source, target in node[key].items() if source != which}
+        if not node[key]:
+            del node[key]
 
     def flags(self, node: Mapping) -> list[str]:
         """The yes/no keys a node may change here: diagnostics; in ROS 2 lifecycle, autostart for lifecycle nodes,

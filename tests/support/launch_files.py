@@ -6,12 +6,14 @@ and YAML files through the entities and attributes launch's frontends parse (a f
 refuses an attribute its action does not read), the Python file through launch_ros's
 Python API, its calls evaluated from the source without importing it. Each reads back as
 the same description: arguments, nodes (package, executable, name, namespace, parameter
-files, lifecycle autostart, condition) and containers with the nodes they load.
+files and values, remappings, ROS arguments, lifecycle autostart, condition) and containers
+with the nodes they load. Substitutions read as their XML spelling, $(var name).
 """
 
 from __future__ import annotations
 
 import ast
+import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -28,6 +30,7 @@ FRONTEND = {
     "node_container": _NODE | {"composable_node"},
     "composable_node": {"pkg", "plugin", "name", "namespace", "param", "remap", "extra_arg"},
     "param": {"from", "name", "value"},
+    "remap": {"from", "to"},
 }
 BOOLEAN_ATTRIBUTES = {"autostart"}
 # Read with any type (launch_ros's <param value>): a YAML value keeps its own; XML's text is read as YAML.
@@ -51,9 +54,9 @@ PYTHON_API = {
 }
 
 
-def _node(pkg, exec_, name, namespace, params, autostart, condition) -> dict:
+def _node(pkg, exec_, name, namespace, params, autostart, condition, remaps=(), ros_args=None) -> dict:
     return {"pkg": pkg, "exec": exec_, "name": name, "namespace": namespace, "params": tuple(params),
-            "autostart": autostart, "condition": condition}
+            "autostart": autostart, "condition": condition, "remaps": tuple(remaps), "ros_args": ros_args}
 
 
 def _condition(attributes) -> tuple[str, str] | None:
@@ -88,25 +91,32 @@ def _read_entities(entities, typed: bool) -> dict:
         for child_tag, items in children.items():
             for child_attributes, _ in items:
                 _check_attributes(child_tag, child_attributes)
-        params = [attrs["from"] for attrs, _ in children.get("param", [])]
+        params = [_param(attrs, typed) for attrs, _ in children.get("param", [])]
         if tag == "arg":
             args[attributes["name"]] = attributes.get("default")
         elif tag in ("node", "lifecycle_node"):
             nodes.append(_node(attributes["pkg"], attributes["exec"], attributes.get("name"),
                                attributes.get("namespace"), params,
                                tag == "lifecycle_node" and _true(attributes.get("autostart")),
-                               _condition(attributes)))
+                               _condition(attributes), _remaps(children), attributes.get("ros_args")))
         elif tag == "node_container":
             loaded = []
             for attrs, grandchildren in children.get("composable_node", []):
-                for param, _ in grandchildren.get("param", []):
-                    _check_attributes("param", param)
+                for child_tag in ("param", "remap"):
+                    for child, _ in grandchildren.get(child_tag, []):
+                        _check_attributes(child_tag, child)
                 loaded.append({"pkg": attrs["pkg"], "plugin": attrs["plugin"], "name": attrs.get("name"),
-                               "params": tuple(_param(p, typed) for p, _ in grandchildren.get("param", []))})
+                               "namespace": attrs.get("namespace"),
+                               "params": tuple(_param(p, typed) for p, _ in grandchildren.get("param", [])),
+                               "remaps": _remaps(grandchildren)})
             containers.append({"pkg": attributes["pkg"], "exec": attributes["exec"], "name": attributes["name"],
                                "namespace": attributes.get("namespace"), "condition": _condition(attributes),
-                               "nodes": loaded})
+                               "params": tuple(params), "ros_args": attributes.get("ros_args"), "nodes": loaded})
     return _description(args, nodes, containers)
+
+
+def _remaps(children: dict) -> tuple[tuple[str, str], ...]:
+    return tuple((attributes["from"], attributes["to"]) for attributes, _ in children.get("remap", []))
 
 
 def _param(attributes, typed: bool) -> str | tuple[str, object]:
@@ -171,6 +181,8 @@ class _Reader:
             return self.names[node.id]
         if isinstance(node, ast.List):
             return [self.value(item) for item in node.elts]
+        if isinstance(node, ast.Tuple):  # a remapping, (from, to)
+            return tuple(self.value(item) for item in node.elts)
         if isinstance(node, ast.Dict):  # parameters by name, as launch_ros takes them
             return {self.value(key): self.value(value) for key, value in zip(node.keys, node.values, strict=True)}
         if isinstance(node, ast.Call) and isinstance(node.func, ast.Name):
@@ -221,18 +233,29 @@ def read_python(text: str) -> dict:
         elif call in ("Node", "LifecycleNode"):
             autostart = call == "LifecycleNode" and action.get("autostart") is True
             nodes.append(_node(action["package"], action["executable"], action.get("name"), action.get("namespace"),
-                               action.get("parameters", []), autostart, action.get("condition")))
+                               _python_params(action), autostart, action.get("condition"),
+                               action.get("remappings", ()), _ros_args(action)))
         elif call == "ComposableNodeContainer":
             loaded = [{"pkg": d["package"], "plugin": d["plugin"], "name": d.get("name"),
-                       "params": tuple(entry for p in d.get("parameters", [])
-                                       for entry in (p.items() if isinstance(p, dict) else [p]))}
+                       "namespace": d.get("namespace"), "params": _python_params(d),
+                       "remaps": tuple(d.get("remappings", ()))}
                       for d in action["composable_node_descriptions"]]
             containers.append({"pkg": action["package"], "exec": action["executable"], "name": action["name"],
                                "namespace": action.get("namespace"), "condition": action.get("condition"),
-                               "nodes": loaded})
+                               "params": _python_params(action), "ros_args": _ros_args(action), "nodes": loaded})
         else:
             raise AssertionError(f"{call} in the LaunchDescription")
     return _description(args, nodes, containers)
+
+
+def _python_params(action: dict) -> tuple:
+    """Parameter files and (name, value) pairs, as the frontends list them."""
+    return tuple(entry for p in action.get("parameters", []) for entry in (p.items() if isinstance(p, dict) else [p]))
+
+
+def _ros_args(action: dict) -> str | None:
+    """ros_arguments as the frontends' ros_args attribute spells them: one command line."""
+    return " ".join(action["ros_arguments"]) if "ros_arguments" in action else None
 
 
 READERS = {".xml": read_xml, ".yaml": read_yaml, ".py": read_python}
@@ -243,19 +266,60 @@ def description(path: Path) -> dict:
     return READERS[path.suffix](path.read_text(encoding="utf-8"))
 
 
+# What every node gets from the launch arguments (rna.model.LAUNCH_ARGUMENTS).
+SIM_TIME = ("use_sim_time", "$(var use_sim_time)")
+NAMESPACE = "$(var namespace)"
+LOG_LEVEL = "--log-level $(var log_level)"
+
+
 def expected_description(package) -> dict:
     """What the package model says its launch file starts."""
     components = [node for node in package.nodes if node.component]
     container_condition = ("if", "$(var container)") if components else None
-    args = ({"container": "false", "container_executable": "component_container"} if components else {})
+    args = {argument.name: argument.default for argument in package.launch_arguments}
+    if components:
+        args |= {"container": "false", "container_executable": package.container_executable}
     config = f"$(find-pkg-share {package.name})/config"
-    nodes = [_node(package.name, node.name, node.name, "" if node.autostart else None,
-                   [f"{config}/{node.name}.yaml"], node.autostart,
-                   ("unless", "$(var container)") if node.component else None) for node in package.nodes]
+    nodes = [_node(package.name, node.name, node.name, NAMESPACE, [f"{config}/{node.name}.yaml", SIM_TIME],
+                   node.autostart, ("unless", "$(var container)") if node.component else None, node.remappings,
+                   LOG_LEVEL) for node in package.nodes]
     containers = [{"pkg": "rclcpp_components", "exec": "$(var container_executable)",
-                   "name": f"{package.name}_container", "namespace": "", "condition": container_condition,
+                   "name": f"{package.name}_container", "namespace": NAMESPACE, "condition": container_condition,
+                   "params": (SIM_TIME,), "ros_args": LOG_LEVEL,
                    "nodes": [{"pkg": package.name, "plugin": f"{package.name}::{node.class_name}", "name": node.name,
-                              "params": (f"{config}/{node.name}.yaml",
-                                         *([("autostart", True)] if node.autostart else []))}
+                              "namespace": NAMESPACE,
+                              "params": (f"{config}/{node.name}.yaml", SIM_TIME,
+                                         *([("autostart", True)] if node.autostart else [])),
+                              "remaps": node.remappings}
                              for node in components]}]
     return _description(args, nodes, containers if components else [])
+
+
+# ----------------------------------------------------------------------------- running it
+
+def substituted(text: str, values: dict, share) -> str:
+    """`text` with $(var NAME) given by `values` and $(find-pkg-share PACKAGE) by share(PACKAGE)."""
+    text = re.sub(r"\$\(find-pkg-share ([^)]+)\)", lambda match: str(share(match[1])), text)
+    return re.sub(r"\$\(var ([^)]+)\)", lambda match: str(values[match[1]]), text)
+
+
+def ros_arguments(node: dict, values: dict, share) -> list[str]:
+    """What launch_ros gives a node of the description on its command line (after --ros-args),
+    with the launch arguments `values`: its name and namespace, its parameter files, then its
+    parameters, remappings and ROS arguments."""
+    arguments = ["-r", f"__node:={node['name']}"]
+    namespace = substituted(node["namespace"] or "", values, share).strip("/")
+    if namespace:
+        arguments += ["-r", f"__ns:=/{namespace}"]
+    for param in node["params"]:
+        if isinstance(param, str):
+            arguments += ["--params-file", substituted(param, values, share)]
+        else:
+            name, value = param
+            value = substituted(value, values, share) if isinstance(value, str) else value
+            arguments += ["-p", f"{name}:={str(value).lower() if isinstance(value, bool) else value}"]
+    for source, target in node["remaps"]:
+        arguments += ["-r", f"{substituted(source, values, share)}:={substituted(target, values, share)}"]
+    if node["ros_args"]:
+        arguments += substituted(node["ros_args"], values, share).split()
+    return arguments

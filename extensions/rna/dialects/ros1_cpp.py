@@ -10,6 +10,15 @@ class Ros1Cpp(CppDialect):
     # roscpp's parameter server keeps integers as int (XmlRpc).
     SCALARS = {**_SCALARS, "int": "int"}
 
+    @property
+    def executor_text(self) -> str:
+        """How the node's callbacks are handled, in words."""
+        node = self.node
+        if not node.multi_threaded:
+            return "one thread (ros::spin())"
+        threads = f"{node.threads} threads" if node.threads else "as many threads as the machine has cores"
+        return f"a ros::MultiThreadedSpinner of {threads}"
+
     @staticmethod
     def header(interface) -> str:
         suffix = "Action" if interface.kind == "action" else ""

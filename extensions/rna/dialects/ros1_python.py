@@ -33,7 +33,7 @@ class Ros1Python(PythonDialect):
         parts += [(s.type, "Response") for s in node.service_servers]
         parts += [(a.type, part) for a in node.action_servers for part in ("Feedback", "Result")]
         return import_block([*self._needs("user"), f"{self.base_module}:{node.base_class_name}",
-                             *(self._import(t, part) for t, part in parts)])
+                             f"{self.base_module}:run", *(self._import(t, part) for t, part in parts)])
 
     @staticmethod
     def period(timer) -> str:
