@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import contextlib
 import random
+import re
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -273,6 +274,22 @@ def test_launch_file_starts_every_node_with_its_config(catkin_ws):
         with started(launch):
             launch.wait_for(r"rate: 2\.5", timeout=30)  # the value tuned in config/talker.yaml
             launch.wait_for(r'I heard: "Hello World: \d+"', timeout=30)
+            assert_clean_exit(launch, launch.interrupt(timeout=30))
+
+
+def test_launch_arguments_reach_every_node(catkin_ws):
+    """namespace:=robot1 use_sim_time:=true, as roslaunch's summary lists what it starts."""
+    with catkin_ws.network("roslaunch_args") as (prefix, env):
+        launch = NodeProcess([*prefix, "roslaunch", "bringup", "bringup.launch", "namespace:=robot1",
+                              "use_sim_time:=true"], env=env, log_path=catkin_ws.logs / "roslaunch" / "arguments.log")
+        with started(launch):
+            launch.wait_for(r"rate: 2\.5", timeout=30)  # the talker is up, its parameters read
+            summary = launch.output
+            assert re.search(r"^ \* /use_sim_time: True$", summary, re.MULTILINE), summary
+            assert re.search(r"^ \* /robot1/talker/rate: 2\.5$", summary, re.MULTILINE), summary
+            nodes = summary.split("NODES", 1)[1]
+            assert re.search(r"^  /robot1/\n    listener \(bringup/listener\.py\)\n    talker \(bringup/talker\)$",
+                             nodes, re.MULTILINE), summary
             assert_clean_exit(launch, launch.interrupt(timeout=30))
 
 

@@ -126,8 +126,9 @@ ROS1_CPP = {
 }
 
 ROS1_PYTHON = {
-    # The base module's run() (which holds Ctrl-C in start-up) and the starter code's logging.
-    "node": Needs(("rospy",), ("rospy", "signal"), ("rospy",)),
+    # The base module's run(), which holds Ctrl-C in start-up (rna.dialects.ros1_python adds
+    # rospy to the user's file when its starter code logs).
+    "node": Needs(("rospy",), ("rospy", "signal")),
     "rospy_wiring": Needs(base=("rospy",)),
     "diagnostics": Needs(("diagnostic_msgs", "diagnostic_updater"), ("diagnostic_updater",),
                          ("diagnostic_msgs.msg:DiagnosticStatus",)),

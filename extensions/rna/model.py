@@ -46,6 +46,11 @@ LAUNCH_ARGUMENTS = (
     LaunchArgument("use_sim_time", "false", "true: every node follows the simulated clock on /clock (Gazebo)"),
     LaunchArgument("log_level", "info", "The nodes' log level: debug, info, warn, error or fatal"),
 )
+# roslaunch refuses an empty `ns`: the root namespace is '/'.
+ROS1_LAUNCH_ARGUMENTS = (
+    LaunchArgument("namespace", "/", "The namespace of every node, e.g. robot1 (the root one, /, by default)"),
+    LAUNCH_ARGUMENTS[1],
+)
 
 
 @dataclass(frozen=True)
@@ -476,7 +481,7 @@ class Package:
 
     @property
     def launch_arguments(self) -> tuple[LaunchArgument, ...]:
-        return LAUNCH_ARGUMENTS if self.ros == 2 else LAUNCH_ARGUMENTS[:2]
+        return LAUNCH_ARGUMENTS if self.ros == 2 else ROS1_LAUNCH_ARGUMENTS
 
     @property
     def container_executable(self) -> str:

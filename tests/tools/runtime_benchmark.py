@@ -2,7 +2,7 @@
 
     tests/env python tests/tools/runtime_benchmark.py [--distro kilted] [--rate 1000] [--seconds 10]
                                                       [--rounds 5] [--warmup 2] [--json out.json]
-                                                      [--pair NAME=TALKER,LISTENER ...]
+                                                      [--nice N] [--pair NAME=TALKER,LISTENER ...]
 
 A talker and a listener at --rate messages a second, per pair: the generated Python pair
 (the template's demo nodes, the talker's timer at the rate) and ros2/examples' minimal
@@ -13,6 +13,10 @@ spends in --seconds, as a share of one core, and each message's latency, from th
 `Publishing: ... N` log line to the listener's `I heard: ... N` (rcutils's own timestamps, one
 clock). CPU time of the process, not wall time, is what load from other processes moves least.
 The pairs run round after round in a rotated order; the table shows medians and the spread.
+
+--nice runs the nodes at that niceness (a negative one, as root, has them take their share of
+the cores first when other work loads the machine: their CPU time is what it is either way, but
+a talker that loses the core falls behind its rate).
 
 --pair adds a pair of commands run the same way (comma-separated programs, each run with
 `--ros-args` after it), such as C++ talkers and listeners built elsewhere: the private review
@@ -78,7 +82,7 @@ def within(times: dict[int, float], start: float, end: float) -> int:
     return sum(start <= stamp <= end for stamp in times.values())
 
 
-def run_pair(pair: Pair, env: dict, scratch: Path, warmup: float, seconds: float) -> dict:
+def run_pair(pair: Pair, env: dict, scratch: Path, warmup: float, seconds: float, nice: int = 0) -> dict:
     """One round: start the listener, then the talker; measure; stop both with SIGINT."""
     logs = {role: scratch / f"{pair.name}_{role}_{len(pair.rounds)}.log" for role in ("talker", "listener")}
     processes = {}
@@ -87,7 +91,8 @@ def run_pair(pair: Pair, env: dict, scratch: Path, warmup: float, seconds: float
             with logs[role].open("wb") as log:
                 processes[role] = subprocess.Popen(
                     [*getattr(pair, role), "--ros-args", "-r", f"__node:=bench_{role}"], env=env,
-                    stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+                    stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT, start_new_session=True,
+                    preexec_fn=(lambda: os.nice(nice)) if nice else None)
         time.sleep(warmup)
         before = {role: cpu_seconds(p.pid) for role, p in processes.items()}
         start = time.time()
@@ -190,6 +195,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--warmup", type=float, default=2.0, help="seconds before measuring")
     parser.add_argument("--rounds", type=int, default=5)
     parser.add_argument("--json", type=Path)
+    parser.add_argument("--nice", type=int, default=0, help="the nodes' niceness (negative: as root)")
     parser.add_argument("--pair", action="append", default=[], metavar="NAME=TALKER,LISTENER")
     parser.add_argument("--only-extra", action="store_true", help="measure the --pair pairs only")
     args = parser.parse_args(argv)
@@ -217,10 +223,10 @@ def main(argv: list[str] | None = None) -> int:
         for number in range(args.rounds):
             order = pairs[number % len(pairs):] + pairs[:number % len(pairs)]
             for pair in order:
-                pair.rounds.append(run_pair(pair, env, scratch, args.warmup, args.seconds))
+                pair.rounds.append(run_pair(pair, env, scratch, args.warmup, args.seconds, args.nice))
             print(f"round {number + 1}/{args.rounds} done", file=sys.stderr, flush=True)
         print(f"{args.rate:.0f} messages a second, {args.seconds:.0f} s measured per round after {args.warmup:.0f} s, "
-              f"{args.rounds} rounds, ROS 2 {args.distro}, load average {os.getloadavg()[0]:.2f}")
+              f"{args.rounds} rounds, ROS 2 {args.distro}, nice {args.nice}, load average {os.getloadavg()[0]:.2f}")
         print(table(pairs))
         compared = ratios(pairs) if any(p.name == "reference" for p in pairs) else []
         for row in compared:
