@@ -3,6 +3,7 @@
     tests/env python tests/tools/runtime_benchmark.py [--distro kilted] [--rate 1000] [--seconds 10]
                                                       [--rounds 5] [--warmup 2] [--json out.json]
                                                       [--nice N] [--pair NAME=TALKER,LISTENER ...]
+                                                      [--only-extra] [--inherit-env]
 
 A talker and a listener at --rate messages a second, per pair: the generated Python pair
 (the template's demo nodes, the talker's timer at the rate) and ros2/examples' minimal
@@ -20,7 +21,9 @@ a talker that loses the core falls behind its rate).
 
 --pair adds a pair of commands run the same way (comma-separated programs, each run with
 `--ros-args` after it), such as C++ talkers and listeners built elsewhere: the private review
-builds the generated C++ nodes and ros2/examples' rclcpp ones against a real rclcpp.
+builds the generated C++ nodes and ros2/examples' rclcpp ones against a real rclcpp. With
+--only-extra only those run; --inherit-env runs them in this process's environment (one that
+sourced their workspace) instead of the suite's ROS 2 environment, on a domain of their own.
 """
 
 from __future__ import annotations
@@ -198,12 +201,19 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--nice", type=int, default=0, help="the nodes' niceness (negative: as root)")
     parser.add_argument("--pair", action="append", default=[], metavar="NAME=TALKER,LISTENER")
     parser.add_argument("--only-extra", action="store_true", help="measure the --pair pairs only")
+    parser.add_argument("--inherit-env", action="store_true", help="run the nodes in this environment")
     args = parser.parse_args(argv)
+    if args.inherit_env and not args.only_extra:
+        parser.error("--inherit-env runs the --pair pairs only: give --only-extra")
 
-    ros2 = ros2_support.ensure_environment(args.distro)
     scratch = Path(tempfile.mkdtemp(prefix="rna-runtime-bench-"))
     try:
-        env = ros2.env(ros2_support.pick_domain_id())
+        if args.inherit_env:
+            env = {**os.environ, "ROS_DOMAIN_ID": str(ros2_support.pick_domain_id()),
+                   "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST"}
+        else:
+            ros2 = ros2_support.ensure_environment(args.distro)
+            env = ros2.env(ros2_support.pick_domain_id())
         pairs = []
         if not args.only_extra:
             install = build(ros2, scratch, args.rate, env)
