@@ -283,7 +283,9 @@ def test_launch_arguments_reach_every_node(catkin_ws):
         launch = NodeProcess([*prefix, "roslaunch", "bringup", "bringup.launch", "namespace:=robot1",
                               "use_sim_time:=true"], env=env, log_path=catkin_ws.logs / "roslaunch" / "arguments.log")
         with started(launch):
-            launch.wait_for(r"rate: 2\.5", timeout=30)  # the talker is up, its parameters read
+            # The talker's own log line (roslaunch's summary lists the parameter before it starts anything).
+            launch.wait_for(r"INFO\].*rate: 2\.5", timeout=30)
+            launch.wait_for(r"process\[robot1/listener-\d+\]: started", timeout=30)
             summary = launch.output
             assert re.search(r"^ \* /use_sim_time: True$", summary, re.MULTILINE), summary
             assert re.search(r"^ \* /robot1/talker/rate: 2\.5$", summary, re.MULTILINE), summary
