@@ -64,7 +64,8 @@ ROS2_CPP = {
                        ("lifecycle_msgs/msg/state.hpp", "rclcpp_lifecycle/lifecycle_node.hpp",
                         "rclcpp_lifecycle/lifecycle_publisher.hpp")),
     "component": Needs(("rclcpp_components",), user=("rclcpp_components/register_node_macro.hpp",)),
-    "executable": Needs(base=("<memory>",)),  # spin(), with its std::shared_ptr to the node
+    # spin(): a std::shared_ptr to the node, std::signal to ignore a SIGINT once stopping.
+    "executable": Needs(base=("<csignal>", "<memory>")),
     # The autostart parameter (read-only) and the timer that starts the node once it spins.
     "starts_itself": Needs(("rcl_interfaces",), ("<chrono>", "rcl_interfaces/msg/parameter_descriptor.hpp")),
     # The base class owns the Updater; the user's status task sets a DiagnosticStatus level.

@@ -6,8 +6,9 @@
                                                       [--only-extra] [--inherit-env]
 
 A talker and a listener at --rate messages a second, per pair: the generated Python pair
-(the template's demo nodes, the talker's timer at the rate) and ros2/examples' minimal
-publisher and subscriber (tests/tools/reference_pair: its rclpy member-function nodes as its
+(the template's demo nodes, the talker's timer at the rate; its starter logs once a second at
+such a rate, made to log every message here, as ros2/examples' talker does and as the latency
+needs) and ros2/examples' minimal publisher and subscriber (tests/tools/reference_pair: its rclpy member-function nodes as its
 jazzy branch publishes them, written out again, the timer period set to the rate). For each,
 after --warmup seconds: the CPU time (user + system, from /proc, every thread) each process
 spends in --seconds, as a share of one core, and each message's latency, from the talker's
@@ -53,6 +54,8 @@ REFERENCE_PERIOD = "timer_period = 0.5  # seconds"
 CLOCK_TICKS = os.sysconf("SC_CLK_TCK")
 # rcutils's console format, the same for every node: its timestamp (seconds), then the message.
 LOG_FORMAT = "{time} {message}"
+# The starter's throttle of a fast timer's log line (once a second).
+THROTTLE = re.compile(r",\s*throttle_duration_sec=[0-9.]+")
 LINE = re.compile(r"^(?P<time>\d+\.\d+) (?P<what>Publishing|I heard): .*?(?P<count>\d+)\D*$", re.MULTILINE)
 
 
@@ -121,7 +124,7 @@ def run_pair(pair: Pair, env: dict, scratch: Path, warmup: float, seconds: float
     # Per message as well as per second: a talker that falls behind the rate on a loaded
     # machine sends fewer messages, and its listener then has less to do.
     return {"talker_cpu": used["talker"] / (end - start), "listener_cpu": used["listener"] / (end - start),
-            "talker_us_per_message": 1e6 * used["talker"] / max(within(sent, start, end), 1),
+            "talker_us_per_message": 1e6 * used["talker"] / max(within(heard, start, end), 1),
             "listener_us_per_message": 1e6 * used["listener"] / max(within(heard, start, end), 1),
             "messages": within(heard, start, end) / (end - start),
             "latency_median": statistics.median(delays), "latency_p90": delays[int(0.9 * (len(delays) - 1))]}
@@ -140,6 +143,8 @@ def build(ros2, scratch: Path, rate: float, env: dict) -> Path:
     text = publisher.read_text()
     assert REFERENCE_PERIOD in text
     publisher.write_text(text.replace(REFERENCE_PERIOD, f"timer_period = {1.0 / rate!r}  # seconds"))
+    talker = workspace / "src" / "bench_generated" / "bench_generated" / "bench_generated" / "talker.py"
+    talker.write_text(THROTTLE.sub("", talker.read_text()))
     ros2.colcon_build(workspace, env)
     return workspace / "install"
 
