@@ -90,9 +90,9 @@ ROS2_CPP = {
 
 ROS2_PYTHON = {
     # What the base module's run() uses: the user's main() calls it.
-    "node": Needs(("rclpy",), ("os", "signal", "threading", "rclpy",
-                               "rclpy.callback_groups:MutuallyExclusiveCallbackGroup",
-                               "rclpy.executors:ExternalShutdownException", "rclpy.signals:SignalHandlerOptions")),
+    "node": Needs(("rclpy",), ("os", "signal", "threading", "rclpy", "rclpy.executors:ExternalShutdownException",
+                               "rclpy.signals:SignalHandlerOptions")),
+    "mutually_exclusive_groups": Needs(base=("rclpy.callback_groups:MutuallyExclusiveCallbackGroup",)),
     "single_threaded": Needs(base=("rclpy.executors:SingleThreadedExecutor",)),
     "multi_threaded": Needs(base=("rclpy.executors:MultiThreadedExecutor",)),
     "reentrant_groups": Needs(base=("rclpy.callback_groups:ReentrantCallbackGroup",)),

@@ -21,7 +21,8 @@ the cores first when other work loads the machine: their CPU time is what it is 
 a talker that loses the core falls behind its rate).
 
 --pair adds a pair of commands run the same way (comma-separated programs, each run with
-`--ros-args` after it), such as C++ talkers and listeners built elsewhere: the private review
+`--ros-args` after it; NAME is compared with a pair named reference_NAME), such as C++ talkers
+and listeners built elsewhere: the private review
 builds the generated C++ nodes and ros2/examples' rclcpp ones against a real rclcpp. With
 --only-extra only those run; --inherit-env runs them in this process's environment (one that
 sourced their workspace) instead of the suite's ROS 2 environment, on a domain of their own.
@@ -180,11 +181,13 @@ def table(pairs: list[Pair]) -> str:
 
 
 def ratios(pairs: list[Pair]) -> list[dict]:
-    """Each pair's medians over the reference pair's (the first --pair's over the ones after it)."""
-    reference = next(pair for pair in pairs if pair.name == "reference")
+    """Each pair's medians over its reference's: `generated` over `reference`, and a --pair NAME over
+    a --pair reference_NAME."""
+    by_name = {pair.name: pair for pair in pairs}
     found = []
     for pair in pairs:
-        if pair is reference or pair.name.startswith("reference"):
+        reference = by_name.get("reference" if pair.name == "generated" else f"reference_{pair.name}")
+        if pair.name.startswith("reference") or reference is None:
             continue
         row = {"pair": pair.name, "reference": reference.name}
         for key in ("listener_cpu", "listener_us_per_message", "talker_cpu", "talker_us_per_message",
@@ -243,7 +246,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{args.rate:.0f} messages a second, {args.seconds:.0f} s measured per round after {args.warmup:.0f} s, "
               f"{args.rounds} rounds, ROS 2 {args.distro}, nice {args.nice}, load average {os.getloadavg()[0]:.2f}")
         print(table(pairs))
-        compared = ratios(pairs) if any(p.name == "reference" for p in pairs) else []
+        compared = ratios(pairs)
         for row in compared:
             print(f"{row['pair']} / {row['reference']}: listener CPU {row['listener_cpu']:.3f}x "
                   f"({row['listener_us_per_message']:.3f}x a message), talker CPU {row['talker_cpu']:.3f}x "
