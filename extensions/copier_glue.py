@@ -53,6 +53,7 @@ try:
         import rna.dialects.lines
         import rna.dialects.python
         import rna.dialog
+        import rna.files
         import rna.graph
         import rna.replies
         import rna.lab
@@ -745,9 +746,8 @@ def _answers_file(path: str, mtime_ns: int, size: int) -> tuple[str, object] | N
 
 
 def _read_answers_file(path: str) -> tuple[str, object] | None:
-    try:
-        text = Path(path).read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError):
+    text = rna.files.text(Path(path).parent, Path(path).name, owned=True)
+    if text is None:
         return None
     try:
         return text, yaml.safe_load(text)
@@ -782,6 +782,7 @@ def _check_given_answers(context) -> None:
 def _copier_yml(template: str) -> dict:
     """The template's copier.yml as written (libyaml's parser when PyYAML has it: it is read once a run)."""
     try:
+        # not through rna/files.py: the template's
         loaded = yaml.load(Path(template, "copier.yml").read_text(encoding="utf-8"),
                            Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
     except (OSError, yaml.YAMLError):

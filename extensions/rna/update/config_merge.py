@@ -233,18 +233,20 @@ def _rejected(path: str, text: str, conflicts: dict[str, tuple[object, object]])
     return "\n".join(difflib.unified_diff(lines, theirs, f"a/{path}", f"b/{path}", lineterm="")) + "\n"
 
 
-def write_merged(project: Project, path: str, merged: Merged) -> None:
+def write_merged(project: Project, path: str, merged: Merged) -> bool:
     """The merged file, its conflicts marked in it or in a .rej file beside it, as the
-    update's --conflict asked (what Copier did with the file, when it was not told)."""
+    update's --conflict asked (what Copier did with the file, when it was not told); whether
+    it could be written."""
     rejected = project.root / f"{path}.rej"
     in_a_rej_file = project.conflict == "rej" if project.conflict else rejected.exists()
     if merged.conflicts and in_a_rej_file:
-        project.write(path, merged.text)
-        rejected.write_text(_rejected(path, merged.text, merged.conflicts))
-    else:
-        project.write(path, marked(merged.text, merged.conflicts) if merged.conflicts else merged.text)
-        if rejected.exists():
-            rejected.unlink()
+        return project.write(path, merged.text) and project.write(f"{path}.rej", _rejected(path, merged.text,
+                                                                                            merged.conflicts))
+    if not project.write(path, marked(merged.text, merged.conflicts) if merged.conflicts else merged.text):
+        return False
+    if rejected.exists():
+        rejected.unlink()
+    return True
 
 
 def descriptions_of(package: Package | None, path: str) -> dict:
@@ -264,9 +266,8 @@ def merge_config_files(project: Project, old: Render, new: Render, packages: tup
             continue
         merged = merge(generated, before, new.text(path), (descriptions_of(packages[0], path),
                                                            descriptions_of(packages[1], path)))
-        if merged is None:
+        if merged is None or not write_merged(project, path, merged):
             continue  # not YAML the merge can read: Copier's line merge stands, conflicts and all
-        write_merged(project, path, merged)
         if not merged.conflicts:
             project.resolve_in_index(path)
         report.merged.add(path)

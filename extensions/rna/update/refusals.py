@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from pathlib import Path
 
-from .. import distros
+from .. import distros, files
 from ..answers import AnswerError
 
 GENERATIONS = {1: "ROS 1", 2: "ROS 2"}
@@ -56,11 +56,10 @@ def take_over_error(package, previous: Mapping, destination: Path) -> AnswerErro
         if node.name in before:
             continue
         path = Path(package.dir) / node.user_file
-        try:
-            text = (destination / path).read_text(encoding="utf-8", errors="replace")
-        except OSError:
+        content = files.read(destination, str(path))
+        if content is None:
             continue
-        if node.base_class_name not in text:
+        if node.base_class_name not in (content.text or ""):
             return AnswerError("nodes", (
                 f"node '{node.name}': {path} is already in the package and does not build on "
                 f"{node.base_class_name}, so the new node would take over your file (nothing was written). "
