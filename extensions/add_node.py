@@ -34,6 +34,8 @@ def main(project: Path, answers_file: str) -> int:
         edits.append(("setup.py", integrate.setup_py))
     elif package.build_type == "catkin":
         edits.append(("CMakeLists.txt", integrate.catkin_cmake_lists))
+        if package.python_nodes:
+            edits.append(("setup.py", integrate.catkin_setup_py))
     else:
         edits.append(("CMakeLists.txt", integrate.ament_cmake_lists))
     failed = False

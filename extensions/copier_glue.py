@@ -235,9 +235,13 @@ def python_init_file(context, ros: int) -> str:
     return rna.layout.python_init_file(context.get("package_name"), context.get("target"), ros)
 
 
-def package_files() -> str:
-    """The files of a whole package, one per line, as `_exclude` patterns of the destination's root."""
-    return "\n".join("/" + path for path in rna.layout.PACKAGE_FILES)
+def package_files(ros_distro: str | None = None) -> str:
+    """The files of a whole package, one per line, as `_exclude` patterns of the destination's root.
+
+    A catkin package keeps setup.py: a Python node's base class is a module the package
+    installs, and a package of scripts alone has none (`_skip_if_exists` keeps the user's)."""
+    kept = rna.layout.NODE_PACKAGE_FILES.get(rna.distros.generation(ros_distro), ())
+    return "\n".join("/" + path for path in rna.layout.PACKAGE_FILES if path not in kept)
 
 
 def lab() -> dict:

@@ -81,23 +81,8 @@ class Edits:
 
 # ─── The suite's figure ───────────────────────────────────────────────────────
 # Every scenario counts the user's lines the update lost and whether it exited 0 with a
-# package that colcon or catkin cannot read; conftest.py prints the sums after the run
-# ("merge safety: ..."): both must be 0.
-
-FIGURE = "merge_safety"
-
-
-@pytest.fixture
-def figure(record_property):
-    """figure(result, project, user_lines): records one update's tally (before the test's asserts)."""
-    def count(result, project: Path, user_lines: list[tuple[str, list[str]]]) -> None:
-        lost = 0
-        for path, lines in user_lines:  # a line of an edit may be part of a line (a value replaced)
-            text = (project / path).read_text() if (project / path).is_file() else ""
-            lost += sum(1 for line in lines if line.strip() and line not in text)
-        broken = result.returncode == 0 and bool(broken_packages(project))
-        record_property(FIGURE, {"lost": lost, "broken": int(broken)})
-    return count
+# package that colcon or catkin cannot read (the `figure` fixture, support/template_repo.py);
+# conftest.py prints the sums after the run ("merge safety: ..."): both must be 0.
 
 
 def written(edits: Edits) -> list[tuple[str, list[str]]]:
