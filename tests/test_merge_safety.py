@@ -674,12 +674,16 @@ def test_a_dependency_the_users_code_still_uses_is_not_dropped_silently(project,
 # Comments, order and layout of a tuned config file survive a changed default or a new
 # parameter, whatever --conflict says.
 
+SLIP = "the wheels slip above this"
+
+
 def tuned_with_comments(project: Path, flavor: Flavor) -> Edits:
     edits = Edits(project)
     path, indent = flavor.config_file("driver"), "" if flavor.ros1 else "    "
     edits.replace("a tuned value with a comment", path, "gain: 1.0", "gain: 1.8  # tuned on the real robot, March")
     edits.before("a comment above a parameter", path, "frame_id: base_link", f"{indent}# the frame of the lidar")
-    replace_text(project / path, f"\n\n{indent}max_speed: 0.5\n", f"\n{indent}max_speed: 0.5\n")  # no blank line
+    # no blank line, and a comment on a line the user does not tune (its default changes below)
+    replace_text(project / path, f"\n\n{indent}max_speed: 0.5\n", f"\n{indent}max_speed: 0.5  # {SLIP}\n")
     edits.after("a parameter of the user's own", path, "max_speed: 0.5", f"{indent}stop_distance: 0.3  # mine")
     edits.commit()
     return edits
@@ -708,7 +712,7 @@ def test_a_config_merge_keeps_the_users_text_whatever_the_conflict_mode(project,
         assert values == {"gain": 1.8, "frame_id": "base_link", "max_speed": 0.9, "stop_distance": 0.3,
                           "timeout": 0.5}, f"--conflict {mode}:\n{text}"
         indent = "" if flavor.ros1 else "    "
-        assert f"frame_id: base_link\n{indent}max_speed: 0.9" in text, f"the user's layout is lost:\n{text}"
+        assert f"frame_id: base_link\n{indent}max_speed: 0.9  # {SLIP}\n" in text, f"the user's text is lost:\n{text}"
         outcomes[mode] = text
     assert outcomes["inline"] == outcomes["rej"]
 
@@ -727,7 +731,8 @@ def test_a_real_config_conflict_is_loud_whatever_the_conflict_mode(project, flav
         conflicts = conflicted_files(destination)
         assert (path if mode == "inline" else f"{path}.rej") in conflicts, f"--conflict {mode}: {conflicts}"
         text = (destination / path).read_text()
-        assert "max_speed: 0.9" in text and "timeout: 0.5" in text, f"--conflict {mode}: the rest is merged\n{text}"
+        assert f"max_speed: 0.9  # {SLIP}" in text and "timeout: 0.5" in text, (
+            f"--conflict {mode}: the rest is merged\n{text}")
         assert "# the frame of the lidar" in text and "stop_distance: 0.3  # mine" in text, text
 
 
