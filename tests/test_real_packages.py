@@ -12,7 +12,6 @@ packages with the grown node and run it (test_ros2.py, test_ros1.py).
 
 from __future__ import annotations
 
-import subprocess
 import sys
 
 import pytest
@@ -20,44 +19,17 @@ import pytest
 if "support.template_repo" not in sys.modules:  # its asserts explain themselves too
     pytest.register_assert_rewrite("support.template_repo")
 from support import real_packages  # noqa: E402
-from support.generation import git, subprocess_env  # noqa: E402
 from support.real_packages import PACKAGES, changes_outside_blocks, snapshot  # noqa: E402
-from support.template_repo import commit_all, conflicted_files, run_update, summary_of  # noqa: E402
+from support.template_repo import conflicted_files, summary_of  # noqa: E402
 
 pytest_plugins = ("support.template_repo",)
 pytestmark = pytest.mark.update
 
 
-def add_node(template_dir, folder, answers: dict) -> subprocess.CompletedProcess:
-    """`copier copy` of one node into the package, as a user types it."""
-    data = [f"--data={key}={value}" for key, value in {"copyright_year": 2026, **answers}.items()]
-    return subprocess.run([sys.executable, "-m", "copier", "copy", "--trust", "--defaults", "--vcs-ref=HEAD", *data,
-                           str(template_dir), str(folder)], cwd=folder, env=subprocess_env(), capture_output=True,
-                          text=True, stdin=subprocess.DEVNULL, timeout=300)
-
-
-def grown_package(template_dir, folder, name: str):
-    """The package `name` written, committed, its node added and committed, then grown by an update:
-    (its files before the node, the update's result)."""
-    package = PACKAGES[name]
-    real_packages.write(name, folder)
-    git("init", "-q", "-b", "main", cwd=folder)
-    commit_all(folder, name)
-    original = snapshot(folder)
-    added = add_node(template_dir, folder, package.node)
-    assert added.returncode == 0, added.stdout + added.stderr
-    problems = changes_outside_blocks(original, snapshot(folder))
-    assert not problems, "adding the node changed the package:\n" + "\n".join(problems)
-    commit_all(folder, "the node, added")
-    answers_file = f".copier-answers.rna-{package.node['node_name']}.yml"
-    result = run_update(folder, {"nodes": [package.grown]}, extra_args=("--answers-file", answers_file))
-    return original, result
-
-
 @pytest.mark.parametrize("name", PACKAGES)
 def test_a_node_added_to_a_real_package_and_grown_leaves_every_byte_of_it(template_dir, tmp_path, figure, name):
     folder = tmp_path / name
-    original, result = grown_package(template_dir, folder, name)
+    original, result = real_packages.grown(template_dir, folder, name)
     problems = changes_outside_blocks(original, snapshot(folder))
     figure(result, folder, lost=len(problems))
     assert result.returncode == 0, result

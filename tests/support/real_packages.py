@@ -12,7 +12,8 @@ Latin-1, files with CRLF line ends, a mesh over the update's 1 MiB reading limit
 symbolic link, a file without a final newline.
 
 `PACKAGES` names each with the node a test adds to it and the answers that grow that
-node in a `copier update`; `write(kind, folder)` writes one.
+node in a `copier update`; `write(name, folder)` writes one, `grown(...)` writes it, adds
+its node and grows it, as a user does (committing in between).
 """
 
 from __future__ import annotations
@@ -21,12 +22,17 @@ import difflib
 import os
 import re
 import struct
+import subprocess
+import sys
 import textwrap
 import zlib
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from rna import files
+
+from .generation import git, subprocess_env
+from .template_repo import UpdateResult, commit_all, run_update
 
 MAINTAINER = '<maintainer email="grace@example.com">Grace Hopper</maintainer>'
 
@@ -1030,3 +1036,34 @@ def changes_outside_blocks(before: dict[str, files.Content], after: dict[str, fi
                 problems.append(f"{path}: lines {i1 + 1}-{i2} {tag}d outside the managed blocks: "
                                 f"{old_lines[i1:i2]!r} -> {new_lines[j1:j2]!r}")
     return problems
+
+
+# ─── A user's steps ───────────────────────────────────────────────────────────
+
+
+def add_node(template: Path, folder: Path, answers: dict) -> subprocess.CompletedProcess:
+    """`copier copy` of one node into the package, as a user types it (the copier command line)."""
+    data = [f"--data={key}={value}" for key, value in {"copyright_year": 2026, **answers}.items()]
+    return subprocess.run([sys.executable, "-m", "copier", "copy", "--trust", "--defaults", "--vcs-ref=HEAD", *data,
+                           str(template), str(folder)], cwd=folder, env=subprocess_env(), capture_output=True,
+                          text=True, stdin=subprocess.DEVNULL, timeout=300)
+
+
+def grown(template: Path, folder: Path, name: str) -> tuple[dict[str, files.Content], UpdateResult]:
+    """The package `name` written and committed, its node added and committed, then grown by
+    `copier update`: (its files before the node came, the update's result). AssertionError when
+    adding the node fails or changes a byte of the package outside the blocks."""
+    package = PACKAGES[name]
+    write(name, folder)
+    git("init", "-q", "-b", "main", cwd=folder)
+    commit_all(folder, name)
+    original = snapshot(folder)
+    added = add_node(template, folder, package.node)
+    if added.returncode != 0:
+        raise AssertionError(f"adding the node to {name} failed:\n{added.stdout}{added.stderr}")
+    problems = changes_outside_blocks(original, snapshot(folder))
+    if problems:
+        raise AssertionError(f"adding the node changed {name}:\n" + "\n".join(problems))
+    commit_all(folder, "the node, added")
+    answers_file = f".copier-answers.rna-{package.node['node_name']}.yml"
+    return original, run_update(folder, {"nodes": [package.grown]}, extra_args=("--answers-file", answers_file))
