@@ -770,9 +770,12 @@ def _check_given_answers(context) -> None:
     """
     conf = context.get("_copier_conf") or {}
     given = conf.get("data") or {}
-    previous = _previous_answers(context) if "ros_distro" in given else None
-    if previous is not None:  # before any other answer is read in the light of the new distro
+    previous = _previous_answers(context) if given else None
+    if previous is not None:  # an update: before any other answer is read in the light of these
         _refuse_switch(previous, given)
+        refused = rna.update.refusals.first_copy_error(given)
+        if refused is not None:
+            raise UserMessageError(f"rna-template: {refused}")
     if not given or any(given is checked for checked in _checked):
         return
     _checked.append(given)

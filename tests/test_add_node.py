@@ -102,9 +102,10 @@ def test_catkin_components_are_appended_to_the_users_own_call(tmp_path):
     assert "find_package(catkin REQUIRED COMPONENTS\n  roscpp\n  std_msgs\n  nav_msgs\n)" in text
     assert explained[0] == "CMakeLists.txt: find_package(catkin) also finds nav_msgs"
     assert set(cmake.splitlines()) <= set(text.splitlines())
-    quoted = cmake.replace("find_package(catkin", "## as in find_package(catkin REQUIRED COMPONENTS xyz)\nfind_package(catkin")
-    assert integrate.catkin_cmake_lists(quoted, model)[0] == text.replace(
-        "find_package(catkin", "## as in find_package(catkin REQUIRED COMPONENTS xyz)\nfind_package(catkin", 1)
+    comment = "## as in find_package(catkin REQUIRED COMPONENTS xyz)\n"
+    quoted = cmake.replace("find_package(catkin", comment + "find_package(catkin")
+    assert integrate.catkin_cmake_lists(quoted, model)[0] == text.replace("find_package(catkin",
+                                                                          comment + "find_package(catkin", 1)
     for call, grown in (
             ("find_package(catkin REQUIRED COMPONENTS roscpp std_msgs)",
              "find_package(catkin REQUIRED COMPONENTS roscpp std_msgs nav_msgs)"),

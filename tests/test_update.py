@@ -23,7 +23,7 @@ from catkin_pkg.package import parse_package
 
 if "support.template_repo" not in sys.modules:  # its asserts explain themselves too
     pytest.register_assert_rewrite("support.template_repo")
-from support.packages import dependency_names  # noqa: E402
+from support.packages import dependency_names, rna  # noqa: E402
 from support.template_repo import (  # noqa: E402
     FLAVORS, NEW_VERSION, OLD_VERSION, PACKAGE, RELEASES, Flavor, answers_of, append_after, commit_all,
     conflict_excerpts, conflicted_files, find_node, generate_project, git, kept_of, managed_lines, missing_block,
@@ -317,6 +317,31 @@ def test_a_language_changed_on_purpose_keeps_the_edited_file(project):
     assert missing_block(destination / flavor.user_file("monitor", "python"), kept) is None
     assert "cpp now" in kept_of(result.output)[flavor.user_file("monitor", "python")]
     assert (destination / flavor.user_file("monitor", "cpp")).is_file()
+
+
+def test_the_one_node_questions_are_the_first_copys_and_an_update_given_one_refuses_it(release_template, tmp_path):
+    """`node_publishers` and the other one-node questions fill in `nodes` on a first copy. The
+    answers file records `nodes` alone (0.3.1 recorded both, and an update given one changed
+    nothing while recording it); an update given one says, in one line, that nodes change in
+    `nodes`, and writes nothing."""
+    answers = {"package_name": PACKAGE, "node_setup": "one", "node_name": "driver",
+               "node_publishers": "cmd_vel:geometry_msgs/msg/Twist"}
+    fresh = answers_of(generate_project(release_template, tmp_path / "fresh", answers, vcs_ref=NEW_VERSION))
+    assert not set(rna.answers.FIRST_COPY) & set(fresh), fresh
+    old = generate_project(release_template, tmp_path / "old", answers, vcs_ref=RELEASES[-1])
+    assert "node_publishers" in answers_of(old)
+    assert_clean_update(run_update(old, vcs_ref=NEW_VERSION), old)
+    recorded = answers_of(old)
+    assert not set(rna.answers.FIRST_COPY) & set(recorded), recorded
+    assert recorded["nodes"] == fresh["nodes"] == [
+        {"language": "python", "name": "driver", "publishers": ["cmd_vel:geometry_msgs/msg/Twist"]}]
+    commit_all(old, "updated")
+
+    refused = run_update(old, {"node_publishers": "odom:nav_msgs/msg/Odometry"})
+    assert refused.returncode == 1, refused
+    assert ("rna-template: invalid answer to 'node_publishers': node_publishers describes the node of a first "
+            "copy; this package records its nodes in 'nodes'") in refused.stderr, refused
+    assert "Traceback" not in refused.stderr and git("status", "--porcelain", cwd=old).stdout == "", refused
 
 
 # ─── Adding endpoints to existing nodes ───────────────────────────────────────

@@ -37,10 +37,10 @@ def _packages(root: Path, depth: int = 4):
     """(package name, folder) of every package.xml under root, not descending into packages."""
     if not root.is_dir():
         return
-    for current, folders, files in os.walk(root):
+    for current, folders, names in os.walk(root):
         level = len(Path(current).relative_to(root).parts)
         folders[:] = [f for f in folders if not f.startswith(".") and f not in _SKIP] if level < depth else []
-        if "package.xml" in files:
+        if "package.xml" in names:
             folders[:] = []
             match = _NAME.search(files.text(Path(current), "package.xml") or "")
             if match:

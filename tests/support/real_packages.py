@@ -936,7 +936,8 @@ ROVER_DESCRIPTION = RealPackage(
                 Fixed Frame: base_link
             """).replace("\n", "\r\n"),
         "doc/rover.png": png(64, 48),
-        "README.md": "# rover_description\n\n![The rover](doc/rover.png)\n\n`ros2 launch rover_description display.launch.py`\n",
+        "README.md": ("# rover_description\n\n![The rover](doc/rover.png)\n\n"
+                      "`ros2 launch rover_description display.launch.py`\n"),
     },
     node={"node_name": "wheel_odometry", "node_language": "python",
           "node_subscribers": "joint_states:sensor_msgs/msg/JointState",

@@ -40,12 +40,12 @@ from pathlib import Path
 import pytest
 import yaml
 from catkin_pkg.package import parse_package
-from rna import files
 
 from .generation import (
     ANSWERS_FILE, FIXED_ANSWERS, ROOT, TEMPLATE_ITEMS, answers_of, example, git, snapshot_template, subprocess_env,
 )
 from .packages import rna
+from rna import files  # noqa: E402 - found once .packages has put extensions/ on the path
 from .releases import ReleaseError, following_version, release_commit, tag_name, versions
 
 RELEASES = tuple(tag_name(version) for version in reversed(versions(ROOT)))  # oldest first

@@ -41,6 +41,9 @@ QUICK_LISTS = {
     "node_parameters": "parameters",
 }
 
+# The first copy's ways to `nodes` (the answers file records `nodes` alone).
+FIRST_COPY = ("node_setup", "node_language", "node_name", *QUICK_LISTS)
+
 # The demo: a talker and a listener on one topic.
 DEMO_NODES = [
     {"name": "talker", "publishers": ["chatter:std_msgs/msg/String"], "timers": [0.5]},
@@ -337,5 +340,5 @@ def question_error(question: str, answers: Mapping) -> str | None:
     return None
 
 
-__all__ = ["QUESTIONS", "QUICK_LISTS", "AnswerError", "Answers", "build_package", "check_given", "question_error",
-           "split_list"]
+__all__ = ["FIRST_COPY", "QUESTIONS", "QUICK_LISTS", "AnswerError", "Answers", "build_package", "check_given",
+           "question_error", "split_list"]

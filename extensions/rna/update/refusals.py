@@ -11,7 +11,7 @@ from collections.abc import Mapping
 from pathlib import Path
 
 from .. import distros, files
-from ..answers import AnswerError
+from ..answers import FIRST_COPY, AnswerError
 
 GENERATIONS = {1: "ROS 1", 2: "ROS 2"}
 
@@ -32,6 +32,21 @@ def switch_error(previous: Mapping, answers: Mapping) -> AnswerError | None:
         f"{after} is {new} and this package is {old} ({before}): an update cannot move a package "
         f"between ROS 1 and ROS 2 (nothing was written). Keep ros_distro {before}, or generate a "
         f"{new} package beside this one (copier copy) and move your code into it"))
+
+
+def first_copy_error(given: Mapping) -> AnswerError | None:
+    """An update given one of the first copy's ways to the nodes (`-d node_publishers=...`).
+
+    Those questions fill in `nodes` on a first copy; the answers file records `nodes`, and an
+    update changes the nodes there. Taken as given, the answer would change nothing.
+    """
+    question = next((question for question in FIRST_COPY if question in given), None)
+    if question is None:
+        return None
+    return AnswerError(question, (
+        f"{question} describes the node of a first copy; this package records its nodes in 'nodes', "
+        "so an update changes them there (nothing was written): copier update --trust asks for them, "
+        "or give them all: --data-file nodes.yml, with nodes: [...] as the answers file holds them"))
 
 
 def hand_edit_error(answers_file: str) -> str:

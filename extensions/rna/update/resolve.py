@@ -11,6 +11,11 @@ Python nodes turned C++. So:
   and `--data nodes=...` written as the docs show mean what they meant
   (`keep_languages()`); a new node gets the build type's default.
 
+The answers of the first copy's ways to the nodes (`node_setup` and the one-node questions,
+rna.answers.FIRST_COPY) are not recorded: `nodes` holds what they made, and an update
+changes the nodes there (refusals.first_copy_error), so the file never says one thing in
+`node_publishers` and another in `nodes`.
+
 The answers file also records a checksum of its answers (`checksum()`): Copier renders
 the old version from that file, so answers edited there by hand would be taken for the
 package's old answers and the update would change nothing; `edited_by_hand()` tells.
@@ -26,6 +31,7 @@ from collections.abc import Mapping
 import yaml
 
 from .. import distros
+from ..answers import FIRST_COPY
 
 RENAMED_FROM = "renamed_from"  # a node's old name, during the update that renames it (rename_answers.py)
 CHECKSUM_LINE = "# rna-template checksum of the answers below: "
@@ -57,8 +63,9 @@ def languages(answers: Mapping) -> dict[str, str]:
 
 
 def resolved(answers: Mapping) -> dict:
-    """The answers to record: every node a mapping with its language written out."""
-    recorded = dict(answers)
+    """The answers to record: every node a mapping with its language written out, and not the
+    first copy's ways to the nodes."""
+    recorded = {key: value for key, value in answers.items() if key not in FIRST_COPY}
     nodes = recorded.get("nodes")
     if isinstance(nodes, list):
         written = languages(recorded)
