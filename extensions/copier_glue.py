@@ -759,14 +759,16 @@ def _read_answers_file(path: str) -> tuple[str, object] | None:
         return text, None
 
 
-_checked: list[Mapping] = []  # the given answers checked: a worker's are one object, Copier's `data`
+_checked: list[tuple[Mapping, set[str]]] = []  # the given answers (Copier's `data`) and those checked
 
 
 def _check_given_answers(context) -> None:
     """Answers given with --data or --data-file, checked before Copier reads them.
 
     Copier checks a choice, or parses a YAML answer, itself when it reaches the question,
-    and a broken one ends in a traceback; this says the same in one line, first.
+    and a broken one ends in a traceback; this says the same in one line, first. A choice
+    that depends on other answers (a build type for the distro) is checked as soon as they
+    are known: given, in the answers file being updated, or answered before it.
     """
     conf = context.get("_copier_conf") or {}
     given = conf.get("data") or {}
@@ -776,13 +778,31 @@ def _check_given_answers(context) -> None:
         refused = rna.update.refusals.first_copy_error(given)
         if refused is not None:
             raise UserMessageError(f"rna-template: {refused}")
-    if not given or any(given is checked for checked in _checked):
+    if not given:
         return
-    _checked.append(given)
+    checked = next((done for held, done in _checked if held is given), None)
+    if checked is None:
+        checked = set()
+        _checked.append((given, checked))
+    if len(checked) == len(given) or _inside_a_validator():
+        return
+    around = {key: context.get(key) for key in ("ros_distro", "build_type") if key in context.keys()}
     try:
-        rna.answers.check_given(given, _question_types(str(conf.get("src_path"))))
+        checked |= rna.answers.check_given(given, _question_types(str(conf.get("src_path"))), around, skip=checked)
     except rna.AnswerError as error:
         raise UserMessageError(f"rna-template: {error}") from None
+
+
+def _inside_a_validator() -> bool:
+    """Whether Copier is rendering a question's validator, which turns any error into a
+    traceback ("Validation error for question ..."): a given answer is checked at the next
+    render instead (the question's own `when` comes before its answer is validated)."""
+    frame = sys._getframe(2)
+    while frame is not None:
+        if frame.f_code.co_name == "validate_answer":
+            return True
+        frame = frame.f_back
+    return False
 
 
 @functools.cache

@@ -339,9 +339,33 @@ def test_the_one_node_questions_are_the_first_copys_and_an_update_given_one_refu
 
     refused = run_update(old, {"node_publishers": "odom:nav_msgs/msg/Odometry"})
     assert refused.returncode == 1, refused
-    assert ("rna-template: invalid answer to 'node_publishers': node_publishers describes the node of a first "
-            "copy; this package records its nodes in 'nodes'") in refused.stderr, refused
+    assert ("rna-template: invalid answer to 'node_publishers': node_publishers is a question of the first copy, "
+            "which it helps fill in 'nodes'; this package records its nodes in 'nodes'") in refused.stderr, refused
     assert "Traceback" not in refused.stderr and git("status", "--porcelain", cwd=old).stdout == "", refused
+
+
+INVALID_CHOICES = {  # id -> (flavour, what the update is given, the error)
+    "ament_python-catkin": ("ament_python", {"build_type": "catkin"},
+                            "invalid answer to 'build_type': 'catkin' is not one of ament_cmake, ament_python for ROS 2"),
+    "ament_python-interfaces-in-the-package": (
+        "ament_python", {"interfaces_location": "package"},
+        "invalid answer to 'interfaces_location': an ament_python package cannot build interfaces"),
+    "catkin-ament_cmake": ("catkin", {"build_type": "ament_cmake"},
+                           "invalid answer to 'build_type': 'ament_cmake' is not one of catkin for ROS 1"),
+}
+
+
+@pytest.mark.parametrize("case", INVALID_CHOICES)
+def test_a_choice_the_packages_answers_rule_out_gives_one_line_and_writes_nothing(project, case):
+    """Copier checks a choice given with --data-file against the choices the other answers
+    leave (the package's, from its answers file) and ends in a traceback; the template says
+    which rule in one line first."""
+    flavor_name, data, message = INVALID_CHOICES[case]
+    destination = project(flavor_name)
+    result = run_update(destination, data)
+    assert result.returncode == 1, result
+    assert f"rna-template: {message}" in result.stderr and "Traceback" not in result.stderr, result
+    assert git("status", "--porcelain", cwd=destination).stdout == "", result
 
 
 # ─── Adding endpoints to existing nodes ───────────────────────────────────────

@@ -44,9 +44,9 @@ def first_copy_error(given: Mapping) -> AnswerError | None:
     if question is None:
         return None
     return AnswerError(question, (
-        f"{question} describes the node of a first copy; this package records its nodes in 'nodes', "
-        "so an update changes them there (nothing was written): copier update --trust asks for them, "
-        "or give them all: --data-file nodes.yml, with nodes: [...] as the answers file holds them"))
+        f"{question} is a question of the first copy, which it helps fill in 'nodes'; this package records its "
+        "nodes in 'nodes', so an update changes them there (nothing was written): copier update --trust asks "
+        "for them, or give them all: --data-file nodes.yml, with nodes: [...] as the answers file holds them"))
 
 
 def hand_edit_error(answers_file: str) -> str:
