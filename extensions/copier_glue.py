@@ -365,6 +365,7 @@ class RnaExtension(ContextHook):
             # that name needs no package and no checks.
             return
         _refuse_hand_edited_answers(context)
+        _refuse_to_copy_over_a_package(context)
         if str(context.get("_copier_phase")) == "tasks":
             _keep_update_render(context)
         elif str(context.get("_copier_phase")) == "migrate" and str(context.get("_copier_operation")) == "update":
@@ -677,6 +678,15 @@ def _refuse_hand_edited_answers(context) -> None:
         _hand_edited[key] = read is not None and rna.update.resolve.edited_by_hand(*read) is True
     if _hand_edited[key]:
         raise UserMessageError(f"rna-template: {rna.update.refusals.hand_edit_error(conf.get('answers_file'))}")
+
+
+def _refuse_to_copy_over_a_package(context) -> None:
+    """`copier recopy` (a copy, to Copier) or `copier copy` into a package this template made
+    would replace the user's lines in every file they share with the template: stop first."""
+    if _operation() != "copy" or _previous_answers(context) is None:
+        return
+    name = (context.get("_copier_conf") or {}).get("answers_file")
+    raise UserMessageError(f"rna-template: {rna.update.refusals.copy_over_error(name)}")
 
 
 # Copier loads this glue afresh for each of its workers (a copy has one, an update four),

@@ -13,6 +13,7 @@ from __future__ import annotations
 import os
 import re
 import shutil
+import subprocess
 import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
@@ -23,6 +24,7 @@ from catkin_pkg.package import parse_package
 
 if "support.template_repo" not in sys.modules:  # its asserts explain themselves too
     pytest.register_assert_rewrite("support.template_repo")
+from support.generation import subprocess_env  # noqa: E402
 from support.packages import dependency_names, rna  # noqa: E402
 from support.template_repo import (  # noqa: E402
     FLAVORS, NEW_VERSION, OLD_VERSION, PACKAGE, RELEASES, Flavor, answers_of, append_after, commit_all,
@@ -366,6 +368,24 @@ def test_a_choice_the_packages_answers_rule_out_gives_one_line_and_writes_nothin
     assert result.returncode == 1, result
     assert f"rna-template: {message}" in result.stderr and "Traceback" not in result.stderr, result
     assert git("status", "--porcelain", cwd=destination).stdout == "", result
+
+
+@pytest.mark.parametrize("command", ["recopy", "copy"])
+def test_recopy_over_a_lived_in_package_is_refused_in_one_line(project, current_template, command):
+    """Copier suggests `copier recopy` when an update goes wrong; it renders the package afresh
+    over the user's files (with --overwrite, without asking), so the user's lines in
+    package.xml, the build files, config and README would go, with exit 0. Refused instead."""
+    flavor = Flavor("ament_python")
+    destination = project("ament_python")
+    lived_in_edits(destination, flavor)
+    where = [] if command == "recopy" else [str(current_template.path), "."]
+    result = subprocess.run([sys.executable, "-m", "copier", command, "--trust", "--defaults", "--overwrite", *where],
+                            cwd=destination, env=subprocess_env(), capture_output=True, text=True,
+                            stdin=subprocess.DEVNULL, timeout=300)
+    assert result.returncode == 1, result.stdout + result.stderr
+    assert ("rna-template: this folder holds a package the template made (.copier-answers.yml): copier recopy and "
+            "copier copy render it afresh") in result.stderr and "Traceback" not in result.stderr, result.stderr
+    assert git("status", "--porcelain", cwd=destination).stdout == ""
 
 
 # ─── Adding endpoints to existing nodes ───────────────────────────────────────

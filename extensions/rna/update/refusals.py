@@ -49,6 +49,16 @@ def first_copy_error(given: Mapping) -> AnswerError | None:
         "for them, or give them all: --data-file nodes.yml, with nodes: [...] as the answers file holds them"))
 
 
+def copy_over_error(answers_file: str) -> str:
+    """`copier recopy`, or `copier copy`, into a package the template made (its answers file is
+    there): Copier renders the package afresh over the user's files, without the update's
+    merge, and replaces the lines the user added to the files the template shares with them."""
+    return (f"this folder holds a package the template made ({answers_file}): copier recopy and copier copy render "
+            "it afresh over your files and would replace the lines you added to package.xml, the build files, "
+            "the launch and config files and the README (nothing was written). Use copier update --trust, which "
+            "merges them; to start again from the answers, copy into an empty folder and move your code across")
+
+
 def hand_edit_error(answers_file: str) -> str:
     """The answers file was edited by hand (resolve.edited_by_hand): Copier would take the
     edited answers for the package's old ones, render nothing new and exit 0."""
