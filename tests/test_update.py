@@ -347,8 +347,9 @@ def test_the_one_node_questions_are_the_first_copys_and_an_update_given_one_refu
 
 
 INVALID_CHOICES = {  # id -> (flavour, what the update is given, the error)
-    "ament_python-catkin": ("ament_python", {"build_type": "catkin"},
-                            "invalid answer to 'build_type': 'catkin' is not one of ament_cmake, ament_python for ROS 2"),
+    "ament_python-catkin": (
+        "ament_python", {"build_type": "catkin"},
+        "invalid answer to 'build_type': 'catkin' is not one of ament_cmake, ament_python for ROS 2"),
     "ament_python-interfaces-in-the-package": (
         "ament_python", {"interfaces_location": "package"},
         "invalid answer to 'interfaces_location': an ament_python package cannot build interfaces"),

@@ -362,7 +362,8 @@ class Dialog:
         if kind.interface:
             what = {"msg": "topic", "srv": "service", "action": "action"}[kind.interface]
             name = self.ask.text(f"{NAME_PROMPTS[kind.interface]} {BACK}",
-                                 validate=optional(lambda answer: names.topic_name_error(answer, what))).strip()
+                                 validate=optional(lambda answer: names.topic_name_error(
+                                     answer, what, self.rules.types.ros))).strip()
             if not name:
                 return
             choices = type_choices(kind.interface, self.rules.types.ros, self.rules.types.distro, self.found,

@@ -291,9 +291,12 @@ def _shape_error(value: object, question_type: str | None) -> str | None:
     return None
 
 
-# Answers whose choices depend on others: checked once those are known (check_given).
+# Answers whose choices depend on others: checked once those are known (check_given), and
+# at once against every choice they may have.
 DEPENDS_ON = {"build_type": ("ros_distro",), "launch_format": ("ros_distro",),
               "interfaces_location": ("ros_distro", "build_type")}
+ANY_OF = {"build_type": distros.BUILD_TYPES, "launch_format": layout.LAUNCH_FORMATS[2],
+          "interfaces_location": ("separate", "package")}
 
 
 def check_given(given: Mapping, types: Mapping[str, str] | None = None, around: Mapping | None = None,
@@ -312,12 +315,16 @@ def check_given(given: Mapping, types: Mapping[str, str] | None = None, around: 
         around["build_type"] = "catkin"  # not asked in ROS 1
     checked = set()
     for question, value in given.items():
-        if question in skip or any(around.get(other) is None for other in DEPENDS_ON.get(question, ())):
+        if question in skip:
             continue
         try:
             shape = _shape_error(value, (types or {}).get(question))
             if shape:
                 raise ValueError(shape)
+            if question in ANY_OF and value not in ANY_OF[question]:  # whatever the other answers
+                raise ValueError(f"'{value}' is not one of {', '.join(ANY_OF[question])}")
+            if any(around.get(other) is None for other in DEPENDS_ON.get(question, ())):
+                continue  # checked again once what it depends on is known
             if question == "copyright_year":
                 Answers(given).read(question)
             if question in _CHOICES and value not in _CHOICES[question]:
