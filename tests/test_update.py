@@ -213,6 +213,47 @@ def test_an_update_ends_with_a_summary_instead_of_internal_command_lines(project
     assert all("['" not in line and "after_update.py" in line for line in task_lines), result
 
 
+def test_the_last_line_says_done_or_done_with_items_and_the_exit_status_follows(project):
+    flavor = Flavor("ament_python")
+    destination = project("ament_python")
+    edit_user_file(destination, flavor, "logger")
+    commit_all(destination)
+    nodes = [node for node in flavor.answers["nodes"] if node["name"] != "logger"]
+    result = run_update(destination, {"nodes": nodes})
+    assert result.returncode == 1, result
+    last = result.stdout[result.stdout.rindex("Done, with"):].splitlines()
+    assert " ".join(last) == ("Done, with 1 item for you (above): review with `git diff HEAD`, and commit once it is "
+                              "done. copier exits with status 1 to say so; its line \"Task ... returned non-zero "
+                              "exit status 1\" below means that, not a failure."), result
+    assert all(len(line) <= 80 for line in last), last
+    assert "returned non-zero exit status 1." in result.stderr.rstrip().splitlines()[-1], result
+    assert git("status", "--porcelain", cwd=destination).stdout, "the update is done: the package changed"
+
+
+def test_an_after_update_step_that_fails_undoes_the_update_and_says_so(project, current_template, monkeypatch,
+                                                                        capsys):
+    """Whatever breaks in the step after Copier's merge, the package comes back as committed (Copier
+    updates a clean one only), and one line says so: a failed update never leaves it half done."""
+    import after_update
+
+    destination = project("ament_cmake")
+    (destination / "README.md").write_text("what Copier had written\n")  # Copier's part of the update
+    (destination / "robot" / "src" / "planner.cpp").write_text("// a node Copier added\n")
+
+    def broken(*args, **kwargs):
+        raise RuntimeError("a step broke")
+
+    monkeypatch.setattr(after_update.blocks, "dropped_but_used", broken)
+    assert after_update.main(".copier-answers.yml", destination, current_template.path) == 1
+    error = capsys.readouterr().err.strip()
+    assert error.startswith("rna-template: the update failed while finishing (RuntimeError: a step broke, at "
+                            "test_update.py:"), error
+    assert error.endswith("so it was undone: the package is as you committed it. Please report this, with the "
+                          "command you ran."), error
+    assert "\n" not in error
+    assert git("status", "--porcelain", cwd=destination).stdout == ""
+
+
 # ─── Answers stored resolved ──────────────────────────────────────────────────
 # A node's language defaults from the build type; the answers file records it, so that
 # changing the build type (or the distro) never turns a Python node into a C++ one.

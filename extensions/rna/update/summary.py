@@ -104,6 +104,7 @@ def outcome(items: int) -> str:
     """The summary's last words: done, or done with items for the user (what exit 1 means here)."""
     if not items:
         return "Done. Review with `git diff HEAD`, then commit."
-    return (f"Done, with {items} item{'s' if items > 1 else ''} for you (above). Review with `git diff HEAD` and "
-            "commit once they are done. copier exits with status 1 to say so: its line \"Task ... returned "
+    which = "it is" if items == 1 else "they are"
+    return (f"Done, with {items} item{'s' if items > 1 else ''} for you (above): review with `git diff HEAD`, and "
+            f"commit once {which} done. copier exits with status 1 to say so; its line \"Task ... returned "
             "non-zero exit status 1\" below means that, not a failure.")
