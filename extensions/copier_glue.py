@@ -379,6 +379,7 @@ class RnaExtension(ContextHook):
             raise UserMessageError(f"rna-template: invalid answer to 'nodes': {renamed} (nothing was written)")
         if previous is not None:  # an update: answers were in the destination before this run
             _refuse_switch(previous, context)
+            _refuse_names_copier_cannot_update(context)
             # nodes given without a language keep theirs: done in place, so once per list of nodes
             nodes = context.get("nodes")
             if _languages_kept.get(id(nodes)) is not nodes:
@@ -678,6 +679,19 @@ def _refuse_hand_edited_answers(context) -> None:
         _hand_edited[key] = read is not None and rna.update.resolve.edited_by_hand(*read) is True
     if _hand_edited[key]:
         raise UserMessageError(f"rna-template: {rna.update.refusals.hand_edit_error(conf.get('answers_file'))}")
+
+
+def _refuse_names_copier_cannot_update(context) -> None:
+    """A file of the project whose name is not UTF-8 makes Copier's update fail half-way, after
+    it wrote the new version (copier._tools.normalize_git_path, 9.19): stop before it writes."""
+    destination = str((context.get("_copier_conf") or {}).get("dst_path"))
+    if destination not in _names_checked:
+        _names_checked[destination] = rna.update.refusals.undecodable_name(Path(destination))
+    if _names_checked[destination] is not None:
+        raise UserMessageError(f"rna-template: {rna.update.refusals.name_error(_names_checked[destination])}")
+
+
+_names_checked: dict[str, str | None] = {}
 
 
 def _refuse_to_copy_over_a_package(context) -> None:

@@ -230,24 +230,35 @@ def test_the_last_line_says_done_or_done_with_items_and_the_exit_status_follows(
     assert git("status", "--porcelain", cwd=destination).stdout, "the update is done: the package changed"
 
 
-def test_an_after_update_step_that_fails_undoes_the_update_and_says_so(project, current_template, monkeypatch,
-                                                                        capsys):
-    """Whatever breaks in the step after Copier's merge, the package comes back as committed (Copier
-    updates a clean one only), and one line says so: a failed update never leaves it half done."""
-    import after_update
+BROKEN_STEP = """
+import sys
+sys.path.insert(0, sys.argv[1])
+import after_update
 
+
+def broken(*args, **kwargs):
+    raise RuntimeError("a step broke")
+
+
+after_update.blocks.dropped_but_used = broken
+sys.exit(after_update.main(".copier-answers.yml", after_update.Path(sys.argv[2]), after_update.Path(sys.argv[3])))
+"""
+
+
+def test_an_after_update_step_that_fails_undoes_the_update_and_says_so(project, current_template):
+    """Whatever breaks in the step after Copier's merge, the package comes back as committed (Copier
+    updates a clean one only), and one line says so: a failed update never leaves it half done.
+    (The step runs in a process of its own, as Copier runs it, with one of its steps broken.)"""
     destination = project("ament_cmake")
     (destination / "README.md").write_text("what Copier had written\n")  # Copier's part of the update
     (destination / "robot" / "src" / "planner.cpp").write_text("// a node Copier added\n")
-
-    def broken(*args, **kwargs):
-        raise RuntimeError("a step broke")
-
-    monkeypatch.setattr(after_update.blocks, "dropped_but_used", broken)
-    assert after_update.main(".copier-answers.yml", destination, current_template.path) == 1
-    error = capsys.readouterr().err.strip()
+    result = subprocess.run([sys.executable, "-c", BROKEN_STEP, str(current_template.path / "extensions"),
+                             str(destination), str(current_template.path)], cwd=destination, env=subprocess_env(),
+                            capture_output=True, text=True, timeout=300)
+    assert result.returncode == 1, result.stdout + result.stderr
+    error = result.stderr.strip()
     assert error.startswith("rna-template: the update failed while finishing (RuntimeError: a step broke, at "
-                            "test_update.py:"), error
+                            "<string>:"), error
     assert error.endswith("so it was undone: the package is as you committed it. Please report this, with the "
                           "command you ran."), error
     assert "\n" not in error
@@ -427,6 +438,19 @@ def test_recopy_over_a_lived_in_package_is_refused_in_one_line(project, current_
     assert result.returncode == 1, result.stdout + result.stderr
     assert ("rna-template: this folder holds a package the template made (.copier-answers.yml): copier recopy and "
             "copier copy render it afresh") in result.stderr and "Traceback" not in result.stderr, result.stderr
+    assert git("status", "--porcelain", cwd=destination).stdout == ""
+
+
+def test_a_file_name_that_is_not_utf_8_stops_the_update_before_copier_fails_half_way(project):
+    """Copier 9.19 reads the names in git's diff as UTF-8 and fails after it has written the new
+    version; the template refuses first, naming the file."""
+    destination = project("ament_python")
+    (destination / "robot" / os.fsdecode(b"caf\xe9 notes.txt")).write_bytes(b"\xe9t\xe9\n")
+    commit_all(destination, "a note from an old machine")
+    result = run_update(destination, {"nodes": Flavor("ament_python").answers["nodes"][:2]})
+    assert result.returncode == 1, result
+    assert ("rna-template: the file robot/caf\\xe9 notes.txt has a name that is not UTF-8, on which copier update "
+            "fails half-way (nothing was written)") in result.stderr and "Traceback" not in result.stderr, result
     assert git("status", "--porcelain", cwd=destination).stdout == ""
 
 

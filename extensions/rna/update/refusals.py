@@ -7,6 +7,7 @@ rule and what to do instead.
 
 from __future__ import annotations
 
+import subprocess
 from collections.abc import Mapping
 from pathlib import Path
 
@@ -47,6 +48,25 @@ def first_copy_error(given: Mapping) -> AnswerError | None:
         f"{question} is a question of the first copy, which it helps fill in 'nodes'; this package records its "
         "nodes in 'nodes', so an update changes them there (nothing was written): copier update --trust asks "
         "for them, or give them all: --data-file nodes.yml, with nodes: [...] as the answers file holds them"))
+
+
+def undecodable_name(project: Path) -> str | None:
+    """The first file in the project (git's view) whose name is not UTF-8, or None."""
+    listed = subprocess.run(["git", "ls-files", "-z", "--cached", "--others", "--exclude-standard"], cwd=project,
+                            capture_output=True, check=False).stdout
+    for name in listed.split(b"\0"):
+        try:
+            name.decode("utf-8")
+        except UnicodeDecodeError:
+            return name.decode("utf-8", "backslashreplace")
+    return None
+
+
+def name_error(name: str) -> str:
+    """Copier's update fails half-way on a file name that is not UTF-8 (it has written the new
+    version by then); the template stops it first."""
+    return (f"the file {name} has a name that is not UTF-8, on which copier update fails half-way (nothing was "
+            "written): rename it (git mv, to a UTF-8 name), commit, and update again")
 
 
 def copy_over_error(answers_file: str) -> str:
