@@ -16,7 +16,7 @@ import yaml
 
 from .. import catalogue, distros, names
 from .. import qos as qos_rules
-from ..interfaces import InterfaceType, parse_interface
+from ..interfaces import InterfaceType, normalised_type, parse_interface
 from ..model import AUTOSTART_PARAMETER, BASE_MEMBERS, DIAGNOSTICS_TASK, Action, Node, Service, Timer, Topic
 from ..qos import Qos
 from ..parameters import INT_RANGE, Parameter, ParameterType, coerce_default, infer_type, on_step, parse_type
@@ -37,11 +37,39 @@ class Types:
         """`pkg/kind/Name`, `pkg/Name`, or the bare `Name` of an interface defined here."""
         if isinstance(text, str) and (kind, text.strip()) in self.own:
             return self.own[(kind, text.strip())]
-        interface = parse_interface(text, kind, self.ros)
+        interface = parse_interface(normalised_type(text, kind, self.ros), kind, self.ros)
         error = self.distro and catalogue.unknown_type_error(interface.package, kind, interface.name, self.distro)
         if error:
             raise ValueError(error)
         return interface
+
+
+# The keys of a node whose entries name a type, and the kind of that type.
+TYPED_KEYS = {"publishers": "msg", "subscribers": "msg", "service_servers": "srv", "service_clients": "srv",
+              "action_servers": "action", "action_clients": "action"}
+
+
+def normalised_entry(entry: object, kind: str, ros: int) -> object:
+    """An endpoint (short form or mapping) with its type spelled as its ROS generation does
+    (interfaces.normalised_type); everything else as given."""
+    if isinstance(entry, str) and ":" in entry:
+        name, _, rest = entry.partition(":")
+        type_text, colon, qos = rest.partition(":") if kind == "msg" else (rest, "", "")
+        written = normalised_type(type_text.strip(), kind, ros)
+        return entry if written == type_text.strip() else f"{name}:{written}{colon}{qos}"
+    if isinstance(entry, Mapping) and isinstance(entry.get("type"), str):
+        written = normalised_type(entry["type"].strip(), kind, ros)
+        return entry if written == entry["type"].strip() else {**entry, "type": written}
+    return entry
+
+
+def normalised_nodes(nodes: object, ros: int) -> object:
+    """The `nodes` answer with every endpoint's type spelled for `ros` (a list of nodes; else as given)."""
+    if not isinstance(nodes, list):
+        return nodes
+    return [{**node, **{key: [normalised_entry(entry, kind, ros) for entry in node[key]]
+                        for key, kind in TYPED_KEYS.items() if isinstance(node.get(key), list)}}
+            if isinstance(node, Mapping) else node for node in nodes]
 
 
 def _split_short(text: str, fields: int) -> list[str]:
