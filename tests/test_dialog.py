@@ -1,7 +1,7 @@
 """The nodes dialog: many nodes without YAML, at a first copy and in `copier update`.
 
-The pure parts of extensions/rna/dialog.py are driven by a scripted asker; then a newcomer
-drives `copier copy` and `copier update` in an 80x24 pseudo-terminal (support/terminal.py).
+The pure parts of extensions/rna/dialog.py are driven by a scripted asker; a newcomer drives
+`copier copy` and `copier update` at a real terminal in tests/test_replay.py.
 """
 
 from __future__ import annotations
@@ -236,17 +236,6 @@ def test_without_a_terminal_the_dialog_asks_nothing_and_keeps_the_nodes(template
 DOWN = "\x1b[B"
 
 
-def add_topic(terminal: Terminal, kind: str, topic: str, type_: str) -> None:
-    terminal.choose("What next?", f"Add a {kind}")
-    terminal.answer("Topic name", topic)
-    terminal.answer("Message type", type_)
-
-
-def add_node(terminal: Terminal, name: str) -> None:
-    terminal.choose("what next?", "Add a node")
-    terminal.answer("Node name", name)
-
-
 # What the newcomer below makes, and the next test starts from.
 THREE_NODES = [
     {"language": "python", "name": "driver", "publishers": ["odom:nav_msgs/msg/Odometry"],
@@ -258,102 +247,12 @@ THREE_NODES = [
 ]
 
 
-def test_a_newcomer_makes_three_nodes_without_yaml(template_dir, tmp_path):
-    destination = tmp_path / "rover"
-    terminal = Terminal(["copy", "--trust", "--vcs-ref=HEAD", str(template_dir), str(destination)],
-                        tmp_path / "copy.log")
-    try:
-        for prompt in ("Package name", "full name", "e-mail", "License", "Copyright holder", "ROS distribution",
-                       "ament_python holds", "Format of the package's launch file"):
-            terminal.answer(prompt, "")
-        terminal.answer("describe the package's nodes", DOWN * 2)
-        terminal.choose("what next?", "Remove talker")
-        terminal.choose("what next?", "Remove listener")
-        terminal.choose("what next?", "Add a node")
-        terminal.answer("Node name", "driver")
-        terminal.choose("What next?", "Add a subscriber")
-        terminal.answer("Topic name", "cmd_vel")
-        terminal.answer("Message type", "geometry_msgs/msg/Twst")
-        terminal.child.expect_exact("node 'driver': 'geometry_msgs/msg/Twst' is not a message")  # wrapped
-        terminal.child.send("\x7f" * 3 + "wist\r")
-        add_topic(terminal, "publisher", "odom", "nav_msgs/msg/Odometry")
-        terminal.choose("What next?", "Done with")
-        add_node(terminal, "planner")
-        add_topic(terminal, "publisher", "cmd_vel", "geometry_msgs/msg/Twist")
-        terminal.choose("What next?", "Add a service server")
-        terminal.answer("Service name", "replan")
-        terminal.answer("Service type", "std_srvs/srv/Trigger")
-        terminal.choose("What next?", "Done with")
-        add_node(terminal, "monitor")
-        add_topic(terminal, "subscriber", "odom", "nav_msgs/msg/Odometry")
-        terminal.choose("What next?", "Add a parameter")
-        terminal.answer("Parameter name", "limit")
-        terminal.choose("Parameter type", "")  # double
-        terminal.answer("Default value", "2.5")
-        terminal.choose("What next?", "Done with")
-        terminal.choose("what next?", "Done")
-        terminal.answer("One sentence", "")
-        terminal.answer("GitHub Actions workflow", "")
-        # The dialog's rows; the description's default that follows is as long as the nodes make it.
-        cut = [row for row in terminal.wide_rows if "The driver node publishes" not in row]
-        terminal.child.expect(pexpect.EOF, timeout=60)
-    finally:
-        terminal.close()
-    assert terminal.child.exitstatus == 0, (tmp_path / "copy.log").read_text()
-    assert cut == []
-    assert answers_of(destination)["nodes"] == THREE_NODES
-    module = destination / "rover" / "rover"
-    assert {path.name for path in module.glob("*_base.py")} == {"driver_base.py", "planner_base.py",
-                                                               "monitor_base.py"}
-    assert "def on_odom(self, msg):" in (module / "monitor_base.py").read_text()
-
-
 def committed_package(template_dir, destination, nodes) -> None:
     """A package generated and committed to git, as `copier update` needs it."""
     generate(template_dir, destination, {"package_name": "rover", "nodes": nodes})
     git("init", "-q", "-b", "main", cwd=destination)
     git("add", "-A", cwd=destination)
     git("commit", "-q", "-m", "rover from rna-template", cwd=destination)
-
-
-def test_an_update_adds_edits_and_removes_nodes_step_by_step(template_dir, tmp_path):
-    destination = tmp_path / "rover"
-    committed_package(template_dir, destination, THREE_NODES)
-    # --skip-answered: straight to the nodes.
-    terminal = Terminal(["update", "--trust", "--skip-answered", "--vcs-ref=HEAD"], tmp_path / "update.log",
-                        cwd=destination, env=subprocess_env())
-    try:
-        terminal.child.expect_exact("Add, edit or remove nodes step by step? (else keep them)")
-        terminal.child.send("y")  # a yes/no prompt takes one key
-        terminal.choose("what next?", "Remove monitor")
-        terminal.choose("what next?", "Edit planner")
-        terminal.choose("What next?", "Remove service server")
-        terminal.choose("What next?", "Add a timer")
-        terminal.answer("Timer name", "\b" * 10 + "replan")
-        terminal.answer("Period in seconds", "1.0")
-        terminal.choose("What next?", "Done with")
-        add_node(terminal, "logger")
-        add_topic(terminal, "subscriber", "odom", "nav_msgs/msg/Odometry")
-        terminal.choose("What next?", "Done with")
-        terminal.choose("what next?", "Done")
-        terminal.child.expect(pexpect.EOF, timeout=60)
-    finally:
-        terminal.close()
-    assert terminal.child.exitstatus == 0, (tmp_path / "update.log").read_text()
-    assert terminal.wide_rows == []  # no prompt cut
-    answers = answers_of(destination)
-    assert "edit_nodes" not in answers  # asked again at each update
-    assert answers["nodes"] == [
-        THREE_NODES[0],
-        {"language": "python", "name": "planner", "publishers": ["cmd_vel:geometry_msgs/msg/Twist"],
-         "timers": ["replan:1.0"]},
-        {"language": "python", "name": "logger", "subscribers": ["odom:nav_msgs/msg/Odometry"]},
-    ]
-    module = destination / "rover" / "rover"
-    assert {path.name for path in module.glob("*_base.py")} == {"driver_base.py", "planner_base.py",
-                                                               "logger_base.py"}
-    planner = (module / "planner_base.py").read_text()
-    assert "replan" in planner and "Trigger" not in planner
 
 
 @pytest.mark.update  # the flow as it was before the dialog: in the update tier
@@ -442,7 +341,7 @@ def test_removing_a_node_is_confirmed_and_says_what_goes_on_an_update():
     script = Script(["Remove talker", "n", "Remove talker", "y", "Done"])
     nodes = dialog.Dialog([{"name": "talker"}, {"name": "listener"}], rules(), script, existing=True).run()
     assert [node["name"] for node in nodes] == ["listener"]
-    assert script.said[0] == "Remove talker? The update deletes its files, your edits too (git has them)"
+    assert script.said[0] == "Remove talker? The update deletes its files, your edits too (git keeps them)"
     fresh = Script(["Remove talker", "y", "Done"])
     dialog.Dialog([{"name": "talker"}, {"name": "listener"}], rules(), fresh).run()
     assert fresh.said[0] == "Remove talker?"

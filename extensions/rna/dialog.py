@@ -338,13 +338,18 @@ class Asker:
         import questionary
 
         # Typing filters the choices: a long menu is reached by a few letters.
-        return questionary.select(message + "\n ", choices=list(choices), default=default, qmark="🎤",
+        return questionary.select(self.fitted(message) + "\n ", choices=list(choices), default=default, qmark="🎤",
                                   use_search_filter=True, use_jk_keys=False).unsafe_ask()
+
+    @staticmethod
+    def fitted(message: str) -> str:
+        """The question wrapped at the terminal's width, after the question mark's 3 columns."""
+        return terminal.fitted_lines("   " + message, terminal.width())[3:]
 
     def confirm(self, message: str, default: bool = False) -> bool:
         import questionary
 
-        return questionary.confirm(message, default=default, qmark="🎤").unsafe_ask()
+        return questionary.confirm(self.fitted(message) + "\n ", default=default, qmark="🎤").unsafe_ask()
 
     def say(self, line: str) -> None:
         print("\n".join(terminal.wrap(line, terminal.width())), flush=True)
@@ -359,10 +364,10 @@ class Asker:
 
         # Checked on Enter: a half-typed answer is not an error yet.
         if complete:
-            return questionary.autocomplete(message + "\n ", choices=list(complete), default=default,
+            return questionary.autocomplete(self.fitted(message) + "\n ", choices=list(complete), default=default,
                                             validate=check, match_middle=True, qmark="🎤",
                                             validate_while_typing=False).unsafe_ask()
-        return questionary.text(message + "\n ", default=default, validate=check, qmark="🎤",
+        return questionary.text(self.fitted(message) + "\n ", default=default, validate=check, qmark="🎤",
                                 validate_while_typing=False).unsafe_ask()
 
 
@@ -421,7 +426,7 @@ class Dialog:
         """Asked first: on an update, its files go too (git keeps what was committed)."""
         name = node["name"]
         was = node.get(RENAMED_FROM) or (name if name in self.existing else None)
-        question = (f"Remove {name}? The update deletes its files, your edits too (git has them)" if was
+        question = (f"Remove {name}? The update deletes its files, your edits too (git keeps them)" if was
                     else f"Remove {name}?")
         if self.ask.confirm(question, default=False):
             self.nodes.remove(node)

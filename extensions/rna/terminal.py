@@ -13,9 +13,11 @@ leaves prompt_toolkit as it is.
 
 from __future__ import annotations
 
+import importlib
 import os
 import re
 import shutil
+import sys
 import textwrap
 from collections.abc import Callable
 from pathlib import Path
@@ -26,7 +28,15 @@ _COPIERS_LEAD = re.compile(r"^Validation error for question '[^']*': ")
 
 
 def width() -> int:
-    """The columns a printed line may take in the terminal at hand (79 in an 80-column one)."""
+    """The columns a printed line may take in the terminal at hand (79 in an 80-column one).
+
+    The terminal's own size first: COLUMNS, which shutil reads first, may be left from another.
+    """
+    for stream in (sys.stdout, sys.stderr, sys.stdin):
+        try:
+            return max(os.get_terminal_size(stream.fileno()).columns - MARGIN, 20)
+        except (AttributeError, OSError, ValueError):
+            continue
     return max(shutil.get_terminal_size((80, 24)).columns - MARGIN, 20)
 
 
@@ -62,7 +72,9 @@ def show_whole_validation_errors() -> bool:
         from prompt_toolkit.filters import has_validation_error
         from prompt_toolkit.layout.containers import ConditionalContainer, Window
         from prompt_toolkit.layout.controls import FormattedTextControl
-        from prompt_toolkit.shortcuts import prompt as prompt_module
+
+        # The module (the package's `prompt` is its function of that name).
+        prompt_module = importlib.import_module("prompt_toolkit.shortcuts.prompt")
     except ImportError:
         return False
     if not hasattr(prompt_module, "ValidationToolbar"):
