@@ -127,8 +127,11 @@ _dialogs: dict[str, list] = {}  # the dialog's result, per destination and start
 
 
 def _interactive(context) -> bool:
+    """Whether the dialog can ask at the terminal: not with --defaults, nor under copier-tui
+    (copier_ui), which draws its own form on the terminal the dialog would draw over."""
     conf = context.get("_copier_conf") or {}
-    return not conf.get("defaults") and sys.stdin.isatty() and sys.stdout.isatty()
+    return (not conf.get("defaults") and sys.stdin.isatty() and sys.stdout.isatty()
+            and "copier_ui" not in sys.modules)
 
 
 def _dialog_wanted(context) -> bool:
@@ -168,6 +171,12 @@ def nodes_dialog(context) -> str:
         existing = context.get("edit_nodes") is True and _previous_answers(context) is not None
         _dialogs[key] = rna.dialog.Dialog(start, rules, found=found, own=own, existing=existing).run()
     return yaml.safe_dump(_dialogs[key], sort_keys=False)
+
+
+@pass_context
+def updating(context) -> bool:
+    """Whether this run updates a package (its answers file was in the destination before)."""
+    return _previous_answers(context) is not None
 
 
 @pass_context
@@ -324,6 +333,7 @@ class RnaExtension(ContextHook):
             nodes_dialog=nodes_dialog, nodes_dialog_pending=nodes_dialog_pending,
             existing_package=existing_package, found_interfaces=found_interfaces, git_config=git_config,
             in_git_work_tree=in_git_work_tree, lab=lab, docs_url=rna.lab.docs_url, copier_command=copier_command,
+            updating=updating,
             login_name=getpass.getuser,
             package_files=package_files,
             python_init_file=python_init_file, user_files=user_files,
