@@ -156,8 +156,9 @@ def test_one_node_prompt_by_prompt_without_yaml(terminal, tmp_path):
     node = answers["nodes"][0]
     assert (node["name"], node["language"]) == ("motion_control", "python")
     assert node["subscribers"] == ["odom:nav_msgs/msg/Odometry", "scan:sensor_msgs/msg/LaserScan"]
-    # The default, as much as fits the prompt's line at 80 columns (the whole sentence is 87).
-    assert answers["description"] == "The motion_control node publishes cmd_vel and subscribes to odom and scan"
+    # The default, as much as fits the prompt's line: all of it, at 200 columns (87 characters).
+    assert answers["description"] == (
+        "The motion_control node publishes cmd_vel, subscribes to odom and scan and calls reset")
     base = (tmp_path / "mover" / "mover" / "mover" / "motion_control_base.py").read_text()
     assert "def on_scan(self, msg):" in base
     assert "self.declare_parameter('max_speed', 0.5)" in base
