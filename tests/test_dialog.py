@@ -185,7 +185,8 @@ def test_lifecycle_and_component_are_switched_on_and_off_within_the_rules():
     nodes = dialog.Dialog([{"name": "talker", "language": "cpp"}], rules("ament_cmake"), script).run()
     assert nodes == [{"name": "talker", "language": "cpp", "lifecycle": True}]
     # A component is C++: the language stays, said why; then the component goes.
-    assert "node 'talker': components are C++ nodes (rclcpp_components)" in script.said
+    assert ("node 'talker': make it a C++ node to make it a component: components are C++ nodes "
+            "(rclcpp_components)") in script.said
     assert "Lifecycle node: yes" in script.menus[2] and "Component (rclcpp_components): yes" in script.menus[3]
 
 

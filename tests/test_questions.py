@@ -84,7 +84,7 @@ def test_bad_answers_leave_an_existing_folder_untouched(template_folder, tmp_pat
     data.write_text(yaml.safe_dump({"package_name": "ok_name", "nodes": [{"name": "a", "timers": [0]}]}))
     result = copier_copy(template_folder, destination, "--data-file", str(data))
     assert result.returncode == 1, result.stderr
-    assert "invalid answer to 'nodes': node 'a': timer 'timer': period must be more than 0 s" in result.stderr
+    assert "invalid answer to 'nodes': node 'a': timer 'timer': give a period of more than 0 s" in result.stderr
     assert [p.name for p in destination.iterdir()] == ["notes.txt"]
 
 
