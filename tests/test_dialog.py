@@ -343,6 +343,11 @@ def test_removing_a_node_is_confirmed_and_says_what_goes_on_an_update():
     nodes = dialog.Dialog([{"name": "talker"}, {"name": "listener"}], rules(), script, existing=True).run()
     assert [node["name"] for node in nodes] == ["listener"]
     assert script.said[0] == "Remove talker? The update deletes its files, your edits too (git keeps them)"
+    undone = Script(["Remove talker", "y", "Remove listener", "y", "Undo removing listener", "Undo removing talker",
+                     "Done"])
+    nodes = dialog.Dialog([{"name": "talker"}, {"name": "listener"}], rules(), undone).run()
+    assert [node["name"] for node in nodes] == ["talker", "listener"]
+    assert "Undo removing talker" in undone.menus[3] and not any("Undo" in choice for choice in undone.menus[-1])
     fresh = Script(["Remove talker", "y", "Done"])
     dialog.Dialog([{"name": "talker"}, {"name": "listener"}], rules(), fresh).run()
     assert fresh.said[0] == "Remove talker?"

@@ -392,6 +392,7 @@ class Dialog:
         self.ask = asker or Asker()
         self.found = list(found)
         self.own = dict(own or {})
+        self.removed: list[tuple[int, dict]] = []  # (where it was, the node): undone last first
 
     # --- the package's nodes
 
@@ -403,6 +404,9 @@ class Dialog:
             for node in self.nodes:
                 choices.append(fitting([f"Edit {form}" for form in node_forms(node)], width))
             choices.extend(fitting([f"Remove {node['name']}"], width) for node in self.nodes)
+            undo = fitting([f"Undo removing {self.removed[-1][1]['name']}", "Undo the removal"], width) \
+                if self.removed else None
+            choices.extend([undo] if undo else [])
             choices.append(DONE)
             count = len(self.nodes)
             picked = self.ask.select(message, choices, default=DONE if self.nodes else ADD_NODE)
@@ -415,6 +419,10 @@ class Dialog:
                 continue
             if picked == ADD_NODE:
                 self.add_node()
+                continue
+            if picked == undo:
+                index, node = self.removed.pop()
+                self.nodes.insert(min(index, len(self.nodes)), node)
                 continue
             index = choices.index(picked) - 1
             if index < count:
@@ -429,6 +437,7 @@ class Dialog:
         question = (f"Remove {name}? The update deletes its files, your edits too (git keeps them)" if was
                     else f"Remove {name}?")
         if self.ask.confirm(question, default=False):
+            self.removed.append((self.nodes.index(node), node))
             self.nodes.remove(node)
 
     def add_node(self) -> None:
