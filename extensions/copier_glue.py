@@ -871,5 +871,5 @@ def _refuse_to_overwrite(package, context) -> None:
     node = package.nodes[0]
     taken = _files_in_the_way(context, node.name, (node.language,))
     if taken:
-        raise UserMessageError(f"rna-template: invalid answer to 'nodes': {taken[0]} already exists in "
-                               f"{package.name}; choose another node name (nothing was written)")
+        raise UserMessageError(f"rna-template: invalid answer to 'nodes': choose another node name: {taken[0]} "
+                               f"already exists in {package.name} (nothing was written)")

@@ -109,7 +109,7 @@ def test_a_node_never_lands_on_an_existing_file(template_dir, tmp_path):
     result = subprocess.run([COPIER, "copy", "--trust", "--defaults", "--vcs-ref=HEAD", *data, str(template_dir),
                              str(package)], capture_output=True, text=True, stdin=subprocess.DEVNULL, timeout=120)
     assert result.returncode == 1
-    assert "config/listener.yaml already exists in hand_driver; choose another node name" in result.stderr
+    assert "choose another node name: config/listener.yaml already exists in hand_driver" in result.stderr
     assert "Traceback" not in result.stderr
     assert snapshot(package) == before
 
