@@ -26,8 +26,8 @@ from pathlib import Path
 from urllib.parse import urldefrag, urlparse
 
 import pytest
+from support.docs_site import CONFIG, NO_NETWORK
 from support.tiers import unavailable
-from test_docs import CONFIG, NO_NETWORK
 
 pytestmark = pytest.mark.browser
 
