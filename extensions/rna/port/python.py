@@ -31,7 +31,8 @@ ROS1_MODULES = ("rospy", "actionlib", "roslib", "rosparam", "rosbag", "rosgraph"
                 "rosnode", "genpy", "tf", "tf_conversions", "dynamic_reconfigure", "actionlib_msgs")
 # Nothing of these is kept: their uses are rewritten or marked.
 REMOVED_IMPORTS = ("rospy", "actionlib", "roslib")
-MODULE_TODOS = {"tf": "py.todo.tf", "tf_conversions": "py.todo.tf", "dynamic_reconfigure": "py.todo.dynamic_reconfigure"}
+MODULE_TODOS = {"tf": "py.todo.tf", "tf_conversions": "py.todo.tf",
+                "dynamic_reconfigure": "py.todo.dynamic_reconfigure"}
 LEVELS = {"debug": "debug", "info": "info", "warn": "warning", "err": "error", "fatal": "fatal"}
 LOG_CALL = re.compile(r"rospy\.log(debug|info|warn|err|fatal)(_throttle_identical|_throttle|_once)?$")
 GOAL_STATUS = {"PENDING": "STATUS_ACCEPTED", "ACTIVE": "STATUS_EXECUTING", "PREEMPTED": "STATUS_CANCELED",
