@@ -194,6 +194,7 @@ CMAKE_TODO = {
     "catkin_lint": "ament_lint_auto",
 }
 ROS1_WORDS = re.compile(r"\b(catkin\w*|CATKIN\w*|roscpp|rospy|rostest|rosunit|genmsg|message_generation)\b")
+REMOVED = "\0removed\0"  # a command that goes, with its line
 EXPORT_KEYWORDS = ("CATKIN_DEPENDS", "DEPENDS", "INCLUDE_DIRS", "LIBRARIES", "CFG_EXTRAS")
 
 
@@ -309,6 +310,9 @@ def port_cmake_command(text: str, context: CMakeContext) -> tuple[str, list[str]
         return "", ["cmake.targets"], None  # ROS 2 names the target after the node
     if lower in ("target_link_libraries", "add_dependencies", "include_directories",
                  "target_include_directories") and len(words) <= (0 if lower == "include_directories" else 1):
+        if lower == "target_link_libraries" and words and words[0] not in context.nodes and "${catkin_LIBRARIES}" in args:
+            return text, used, (f"{words[0]} linked catkin's libraries: link what it uses of ROS 2 "
+                                f"(target_link_libraries({words[0]} PRIVATE rclcpp::rclcpp ${{<package>_TARGETS}}))")
         return "", used, None  # nothing left but catkin's
     if lower == "target_link_libraries" and words and words[0] in context.nodes and len(words) > 1 and words[1] not in (
             "PRIVATE", "PUBLIC", "INTERFACE"):
@@ -341,13 +345,16 @@ def port_cmake_lines(lines: list[str], first: int, context: CMakeContext) -> tup
         if todo:
             out.append("\n".join(_commented(piece, todo)))
             todos += 1
+        elif ported == "":
+            out.append(REMOVED)
+            rewrites.append(f"line {number}: {' '.join(piece.split())} (removed)")
         elif ported != piece:
             out.append(ported)
             rewrites.append(f"line {number}: {' '.join(piece.split())} -> {' '.join(ported.split()) or '(removed)'}")
         else:
             out.append(piece)
         del keyword
-    carried = "".join(out).split("\n")
+    carried = [line for line in "".join(out).split("\n") if line.strip() != REMOVED]
     # catkin_package()'s keyword lines, carried alone (the user changed one of the template's)
     result = []
     for index, text_line in enumerate(carried):
@@ -457,6 +464,13 @@ def _launch_line(line: str, context: LaunchContext) -> tuple[str, list[str], str
         new = re.sub(r"\$\(find ", "$(find-pkg-share ", new)
         used.append("launch.find")
     node = re.search(r"<node\b", new)
+    package = re.search(r'\bpkg="([^"]*)"', new)
+    if node and package and package[1] != context.package:
+        names = dependencies.ros2_names(package[1])
+        if names and names[0] != package[1]:  # rviz is rviz2 (package and executable)
+            renamed = new.replace(f'pkg="{package[1]}"', f'pkg="{names[0]}"').replace(
+                f'type="{package[1]}"', f'type="{names[0]}"')
+            new, used = renamed, used + ["launch.exec"]
     if node:
         def executable(match: re.Match) -> str:
             value = match[2]

@@ -19,7 +19,7 @@ import re
 from dataclasses import dataclass, field
 
 from ..dialects.python import import_block
-from . import python
+from . import cpp, python
 from .rule import TODO
 
 
@@ -157,4 +157,66 @@ def port_python(mine: str, old_starter: str, new_starter: str, context: python.C
 def port_other_python(text: str, context: python.Context) -> NodePort:
     """A Python file of the user's own (no starter): the rules alone."""
     ported = python.port(text, context)
+    return NodePort(ported.text, ported.rewrites, todo_count(ported.text, ""))
+
+
+# --- C++
+
+_INCLUDE = re.compile(r'^[ \t]*#[ \t]*include[ \t]*([<"][^>"]+[>"])')
+
+
+def _cpp_parts(text: str) -> tuple[str, list[str], str] | None:
+    """(before, the #include lines, after) around the first run of #include lines (blank lines between)."""
+    lines = text.split("\n")
+    found = [index for index, line in enumerate(lines) if _INCLUDE.match(line)]
+    if not found:
+        return None
+    first = last = found[0]
+    for index in range(first + 1, len(lines)):
+        if _INCLUDE.match(lines[index]):
+            last = index
+        elif lines[index].strip():
+            break
+    return "\n".join(lines[:first]), lines[first:last + 1], "\n".join(lines[last + 1:])
+
+
+def _headers(lines: list[str]) -> list[str]:
+    return [_INCLUDE.match(line)[1] for line in lines if _INCLUDE.match(line)]
+
+
+def _include_lines(ours: list[str], base: list[str], theirs: list[str], needed: set[str]) -> list[str]:
+    """The starter's includes, the user's own, and what the ported code needs."""
+    mine, generated, fresh = _headers(ours), _headers(base), _headers(theirs)
+    added = [header for header in mine if header not in generated and header not in fresh]
+    kept = [header for header in mine if header in generated and header not in fresh
+            and re.fullmatch(r'"\w+/(msg|srv|action)/\w+\.hpp"', header)]
+    extra = [f"<{h[1:-1]}>" if h.startswith("<") else h for h in sorted(needed)]
+    wanted = added + kept + [header for header in extra if header not in fresh]
+    if not wanted:
+        return theirs
+    from ..dialects.cpp import include_block
+
+    every = [header[1:-1] if header.startswith('"') else header for header in fresh + wanted]
+    return include_block(every).split("\n")
+
+
+def port_cpp(mine: str, old_starter: str, new_starter: str, context: cpp.Context) -> NodePort:
+    ours, base = cpp.port(mine, context), cpp.port(old_starter, context)
+    mine_user = user_lines(mine, old_starter)
+    rewrites = [rewrite for rewrite in ours.rewrites if rewrite.line in mine_user]
+    parts = [_cpp_parts(text) for text in (ours.text, base.text, new_starter)]
+    if None in parts:
+        text, conflicted = _merged(ours.text, base.text, new_starter)
+        return NodePort(text, rewrites, todo_count(text, new_starter), conflicted)
+    (our_head, our_includes, our_body), (base_head, base_includes, base_body), (head, includes, body) = parts
+    merged_head, head_conflict = _merged(our_head, base_head, head)
+    merged_body, body_conflict = _merged(our_body, base_body, body)
+    lines = _include_lines(our_includes, base_includes, includes, ours.needed)
+    text = "\n".join([merged_head, *lines, merged_body])
+    return NodePort(text, rewrites, todo_count(text, new_starter), head_conflict or body_conflict)
+
+
+def port_other_cpp(text: str, context: cpp.Context) -> NodePort:
+    """A C++ file of the user's own (no starter): the rules alone."""
+    ported = cpp.port(text, context)
     return NodePort(ported.text, ported.rewrites, todo_count(ported.text, ""))

@@ -31,6 +31,8 @@ ROS2_PACKAGES: dict[str, str | dict[str, str] | None] = {
     "tf": "tf2_ros",
     "tf_conversions": "tf2_geometry_msgs",
     "eigen_conversions": "tf2_eigen",
+    "rviz": "rviz2",
+    "rqt_robot_steering": "rqt_robot_steering",
     "python3-catkin-lint": None,
     "python3-nose": "python3-pytest",
     "rosgraph": None,

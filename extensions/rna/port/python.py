@@ -470,7 +470,7 @@ class _Rewriter:
         if ros2 == ["self", *names]:
             return text
         header = f"{match[1]}({', '.join(ros2)}){match[3]}"
-        key = f"py.api.{entry.method.replace('{id}', 'x')}"
+        key = api.key("python", entry)
         self._spans.append(((-1, -1), Rewrite(function.lineno, key,
                                               f"def {function.name}({', '.join(['self', *names])})",
                                               f"def {function.name}({', '.join(ros2)})")))
@@ -496,7 +496,7 @@ class _Rewriter:
         if isinstance(node, (ast.Import, ast.ImportFrom)):
             return self._import(node)
         if isinstance(node, ast.Assign) and self._server_alias(node):
-            return self.rewrote(node, "py.api.execute_x", "")
+            return self.rewrote(node, api.EXECUTE_CALLS, "")
         if isinstance(node, (ast.Assign, ast.AugAssign, ast.AnnAssign)):
             targets = node.targets if isinstance(node, ast.Assign) else [node.target]
             for target in targets:
@@ -609,12 +609,12 @@ class _Rewriter:
         following = siblings[siblings.index(node) + 1] if siblings.index(node) + 1 < len(siblings) else None
         if isinstance(following, ast.Return) and following.value is None:
             self.returns[id(following)] = result
-            return self.rewrote(node, "py.api.execute_x", f"{handle}.{method}()")
+            return self.rewrote(node, api.EXECUTE_CALLS, f"{handle}.{method}()")
         if following is None and function is not None and siblings is function.body:
             indent = self.indent(node)
-            return self.rewrote(node, "py.api.execute_x", f"{handle}.{method}()\n{indent}return {result}")
+            return self.rewrote(node, api.EXECUTE_CALLS, f"{handle}.{method}()\n{indent}return {result}")
         self.todo(node, "py.todo.goal_handling")
-        return self.rewrote(node, "py.api.execute_x", f"{handle}.{method}()")
+        return self.rewrote(node, api.EXECUTE_CALLS, f"{handle}.{method}()")
 
     def _server_alias(self, node: ast.Assign) -> bool:
         """`server = self.<id>_action_server` in its execute callback, every use of `server` rewritten."""
@@ -719,11 +719,11 @@ class _Rewriter:
         if server is not None:
             handle = server[1]
             if attr == "publish_feedback" and len(node.args) == 1:
-                return self.rewrote(node, "py.api.execute_x", f"{handle}.publish_feedback({self.emit(node.args[0])})")
+                return self.rewrote(node, api.EXECUTE_CALLS, f"{handle}.publish_feedback({self.emit(node.args[0])})")
             if attr == "is_preempt_requested" and not node.args:
-                return self.rewrote(node, "py.api.execute_x", f"{handle}.is_cancel_requested")
+                return self.rewrote(node, api.EXECUTE_CALLS, f"{handle}.is_cancel_requested")
             if attr == "is_active" and not node.args:
-                return self.rewrote(node, "py.api.execute_x", f"{handle}.is_active")
+                return self.rewrote(node, api.EXECUTE_CALLS, f"{handle}.is_active")
             self.todo(node, "py.todo.goal_handling")
         return None
 

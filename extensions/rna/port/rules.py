@@ -9,7 +9,7 @@ adds its own rules, made from its table. The docs show this table (docs/hooks/re
 
 from __future__ import annotations
 
-from . import api
+from . import api, build
 from .rule import Rule
 
 PYTHON = (
@@ -97,7 +97,58 @@ PYTHON = (
          "write it with rclpy", todo=True),
 )
 
-RULES: tuple[Rule, ...] = PYTHON + api.RULES
+CPP = (
+    Rule("cpp.includes", "C++", '#include "ros/ros.h", "std_msgs/String.h", "pkg/FooAction.h"',
+         '#include "rclcpp/rclcpp.hpp", "std_msgs/msg/string.hpp", "pkg/action/foo.hpp"',
+         "actionlib's own headers go: the base class has rclcpp_action's"),
+    Rule("cpp.types", "C++", "std_msgs::String, std_msgs::String::ConstPtr, pkg::FooRequest, boost::shared_ptr",
+         "std_msgs::msg::String, std_msgs::msg::String::ConstSharedPtr, pkg::srv::Foo::Request, std::shared_ptr",
+         "the node's action types too: FooGoal is Foo::Goal"),
+    Rule("cpp.log", "C++", "ROS_INFO(fmt, ...), ROS_INFO_STREAM(x) (DEBUG, WARN, ERROR, FATAL; _NAMED)",
+         "RCLCPP_INFO(get_logger(), fmt, ...), RCLCPP_INFO_STREAM(get_logger(), x)",
+         'outside the node\'s class: rclcpp::get_logger("<node>")'),
+    Rule("cpp.log_throttle", "C++", "ROS_INFO_THROTTLE(period, fmt, ...)",
+         "RCLCPP_INFO_THROTTLE(get_logger(), *get_clock(), period in ms, fmt, ...)"),
+    Rule("cpp.log_once", "C++", "ROS_INFO_ONCE(fmt, ...)", "RCLCPP_INFO_ONCE(get_logger(), fmt, ...)"),
+    Rule("cpp.log_cond", "C++", "ROS_INFO_COND(condition, fmt, ...)",
+         "RCLCPP_INFO_EXPRESSION(get_logger(), condition, fmt, ...)"),
+    Rule("cpp.now", "C++", "ros::Time::now()", "now()", "outside the node's class: rclcpp::Clock().now()"),
+    Rule("cpp.time", "C++", "ros::Time(sec, nsec), ros::Time()", "rclcpp::Time(sec, nsec), rclcpp::Time()"),
+    Rule("cpp.duration", "C++", "ros::Duration(secs), ros::Duration(sec, nsec)",
+         "rclcpp::Duration::from_seconds(secs), rclcpp::Duration(sec, nsec)"),
+    Rule("cpp.to_sec", "C++", "t.toSec(), t.toNSec(), msg.header.stamp.toSec()",
+         "t.seconds(), t.nanoseconds(), rclcpp::Time(msg.header.stamp).seconds()"),
+    Rule("cpp.sleep", "C++", "ros::Duration(secs).sleep()", "rclcpp::sleep_for(std::chrono::milliseconds(...))"),
+    Rule("cpp.rate", "C++", "ros::Rate, ros::WallRate", "rclcpp::Rate, rclcpp::WallRate",
+         "its sleep() blocks: in a goal's thread, not in a callback"),
+    Rule("cpp.ok", "C++", "ros::ok(), ros::isShuttingDown(), ros::shutdown()",
+         "rclcpp::ok(), !rclcpp::ok(), rclcpp::shutdown()"),
+    Rule("cpp.todo.main", "C++", "ros::init(), ros::spin(), ros::spinOnce()",
+         "main() of the ROS 2 starter creates and spins the node", todo=True),
+    Rule("cpp.todo.node_handle", "C++", "ros::NodeHandle",
+         "the node is the handle: create_publisher(), create_subscription()... on this", todo=True),
+    Rule("cpp.todo.param", "C++", "ros::param::get(), nh.param(), nh.getParam()",
+         "add it to the node's parameters (copier update), then get_parameter(\"name\")", todo=True),
+    Rule("cpp.todo.parameter_written", "C++", "a parameter's member assigned",
+         "set_parameter(rclcpp::Parameter(\"name\", value))", todo=True),
+    Rule("cpp.todo.time", "C++", "ros::Time(secs) of a double", "rclcpp::Time(static_cast<int64_t>(secs * 1e9))",
+         "rclcpp::Time(x) takes nanoseconds", todo=True),
+    Rule("cpp.todo.service_call", "C++", "client.call(srv), ros::service::call()",
+         "call_<service>(request): the answer comes to on_<service>_response",
+         "a blocking call in a callback never returns in ROS 2", todo=True),
+    Rule("cpp.todo.service_failure", "C++", "return false in a service callback",
+         "a ROS 2 service always answers: say the failure in the response", todo=True),
+    Rule("cpp.todo.timer_event", "C++", "the ros::TimerEvent of a timer callback", "now()",
+         "ROS 2 timer callbacks get no event", todo=True),
+    Rule("cpp.todo.goal_state", "C++", "the SimpleClientGoalState of a result callback",
+         "wrapped_result.code (rclcpp_action::ResultCode)", todo=True),
+    Rule("cpp.todo.goal_handling", "C++", "other calls of the action server in execute_<id>()",
+         "goal_handle (rclcpp_action::ServerGoalHandle)", todo=True),
+    Rule("cpp.todo.other", "C++", "any other use of ros::, actionlib::, tf::, nodelet::, ROS_ macros",
+         "write it with rclcpp", todo=True),
+)
+
+RULES: tuple[Rule, ...] = PYTHON + CPP + api.RULES + build.RULES
 BY_KEY = {rule.key: rule for rule in RULES}
 
 

@@ -26,7 +26,7 @@ from ..catalogue import load as load_catalogue
 from ..dialects import dialect
 from ..model import Action, Node, Package, Service, Timer, Topic
 from .. import layout
-from ..port import api, build, code, python
+from ..port import api, build, code, cpp, python
 from . import config_merge, merge
 from .project import Project, Render
 from .protect import edited
@@ -94,9 +94,48 @@ def python_context(old: Node, new: Node, package: Package) -> python.Context:
         callbacks=callbacks, kinds=kinds(package))
 
 
+def declaration(text: str, method: str) -> str | None:
+    """The declaration of `method` in a C++ starter or base header, without `virtual` and `override`."""
+    match = re.search(rf"^[ \t]*((?:virtual\s+)?[\w:<>,&*\s]*?\b{re.escape(method)}\s*\()", text, re.M)
+    if not match:
+        return None
+    masked = cpp.mask(text)
+    end = cpp.closing(masked, match.end() - 1)
+    if end < 0:
+        return None
+    return re.sub(r"^virtual\s+", "", text[match.start(1):end + 1].strip())
+
+
+def cpp_context(old: Node, new: Node, package: Package, new_starter: str, new_base: str) -> cpp.Context:
+    """What the C++ rules know of a node: its ROS 1 base class's API, ROS 2's declarations of its callbacks."""
+    ros1_types, ros2_types = dialect(old), dialect(new)
+    callbacks = []
+    for endpoint in old.endpoints:
+        for callback in api.callbacks("cpp"):
+            if callback.endpoint != endpoint_kind(endpoint):
+                continue
+            method = callback.method.format(id=endpoint.id)
+            found = declaration(new_starter, method) or declaration(new_base, method)
+            if found:
+                callbacks.append((method, callback, found))
+    constructor = re.search(rf"explicit\s+{re.escape(new.class_name)}\s*\(.*?\)\s*\n\s*:\s*"
+                            rf"{re.escape(new.base_class_name)}\s*\(\s*options\s*\)", new_starter, re.S)
+    return cpp.Context(
+        class_name=old.class_name, base_class=old.base_class_name, logger=old.name,
+        parameters=tuple((p.name, api.CPP_PARAMETER_ACCESSORS[p.type.name]) for p in old.parameters),
+        publishers=frozenset(t.id for t in old.publishers), subscribers=frozenset(t.id for t in old.subscribers),
+        timers=frozenset(t.id for t in old.timers),
+        service_clients=tuple((s.id, ros2_types.type(s.type)) for s in new.service_clients),
+        action_clients=frozenset(a.id for a in old.action_clients),
+        action_servers=tuple((a.id, ros2_types.type(a.type)) for a in new.action_servers),
+        action_types=frozenset(ros1_types.alias_names[a.type] for a in old.actions),
+        callbacks=tuple(callbacks), constructor=constructor[0] if constructor else "", kinds=kinds(package),
+        headers=((old.base_file.removeprefix("include/"), new.base_file.removeprefix("include/")),))
+
+
 def _rewrite_lines(result: code.NodePort) -> tuple[str, ...]:
     return tuple(f"line {r.line}: {r.before} -> {r.after}" if r.after else f"line {r.line}: {r.before} (removed)"
-                 for r in result.rewrites)
+                 for r in sorted(result.rewrites, key=lambda r: r.line))
 
 
 def _settled(project: Project, *paths: str) -> None:
@@ -125,7 +164,9 @@ def port_node_files(project: Project, old: Render, new: Render, packages: tuple[
         if node.is_python:
             result = code.port_python(mine, old_starter, new_starter, python_context(before, node, old_package))
         else:
-            continue  # C++: rna.port.cpp
+            base = new.text(_in(new_package, node.base_file)) or ""
+            result = code.port_cpp(mine, old_starter, new_starter,
+                                   cpp_context(before, node, old_package, new_starter, base))
         project.write(target, result.text)
         if source != target:
             project.remove(source)
@@ -251,7 +292,7 @@ def port_own_code(project: Project, old: Render, new: Render, packages: tuple[Pa
         if path.endswith(".py"):
             result = code.port_other_python(text, context)
         else:
-            continue  # C++: rna.port.cpp
+            result = code.port_other_cpp(text, cpp.Context(logger=new_package.name, kinds=context.kinds))
         if result.text == text and target == path:
             continue
         if target != path:

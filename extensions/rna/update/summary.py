@@ -84,7 +84,8 @@ def _ported_lines(ported: list[Ported]) -> list[str]:
              f"left marked TODO(port)):"]
     for item in ported:
         where = f"{item.path} (was {item.was})" if item.was and item.was != item.path else item.path
-        counted = [f"{len(item.rewrites)} rewrite{'s' * (len(item.rewrites) != 1)}"]
+        counted = [f"{len(item.rewrites)} rewrite{'s' * (len(item.rewrites) != 1)}" if item.rewrites
+                   else "your lines carried as written"]
         if item.todos:
             counted.append(f"{item.todos} TODO(port)")
         lines += _item_lines(where, ", ".join(counted))
