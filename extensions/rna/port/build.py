@@ -310,7 +310,8 @@ def port_cmake_command(text: str, context: CMakeContext) -> tuple[str, list[str]
         return "", ["cmake.targets"], None  # ROS 2 names the target after the node
     if lower in ("target_link_libraries", "add_dependencies", "include_directories",
                  "target_include_directories") and len(words) <= (0 if lower == "include_directories" else 1):
-        if lower == "target_link_libraries" and words and words[0] not in context.nodes and "${catkin_LIBRARIES}" in args:
+        own = words and words[0] not in context.nodes
+        if lower == "target_link_libraries" and own and "${catkin_LIBRARIES}" in args:
             return text, used, (f"{words[0]} linked catkin's libraries: link what it uses of ROS 2 "
                                 f"(target_link_libraries({words[0]} PRIVATE rclcpp::rclcpp ${{<package>_TARGETS}}))")
         return "", used, None  # nothing left but catkin's

@@ -18,7 +18,9 @@ import difflib
 import re
 from dataclasses import dataclass, field
 
+from ..dialects.cpp import include_block
 from ..dialects.python import import_block
+from ..update.merge import merge3
 from . import cpp, python
 from .rule import TODO
 
@@ -131,8 +133,7 @@ def _import_text(ours: list[str], base: list[str], theirs: _Parts, needed: set[s
 
 
 def _merged(ours: str, base: str, theirs: str) -> tuple[str, bool]:
-    from ..update.merge import merge3  # the update's merge, which settles neighbouring changes
-
+    """The update's merge (rna.update.merge), which settles neighbouring changes too."""
     if ours == base:
         return theirs, False
     return merge3(ours, base, theirs)
@@ -194,8 +195,6 @@ def _include_lines(ours: list[str], base: list[str], theirs: list[str], needed: 
     wanted = added + kept + [header for header in extra if header not in fresh]
     if not wanted:
         return theirs
-    from ..dialects.cpp import include_block
-
     every = [header[1:-1] if header.startswith('"') else header for header in fresh + wanted]
     return include_block(every).split("\n")
 

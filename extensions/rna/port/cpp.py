@@ -22,7 +22,6 @@ from dataclasses import dataclass, field
 from .. import names
 from . import api
 from .python import Ported, Rewrite
-from .rule import TODO
 from .rules import rule
 
 WIDTH = 100  # cpplint's and ROS 2's line length
@@ -359,7 +358,7 @@ class _Rewriter:
             for match in re.finditer(rf"\b{re.escape(service)}_client_\s*\.\s*exists\s*\(\s*\)", masked):
                 edits.append(_Edit(match.start(), match.end(), f"{service}_client_->service_is_ready()",
                                    "cpp.api.service_client"))
-            for match, opening, end in call(rf"\bcall_{re.escape(service)}\s*\("):
+            for _, opening, end in call(rf"\bcall_{re.escape(service)}\s*\("):
                 args = arguments(masked, opening, end)
                 if len(args) != 1:
                     continue
@@ -424,8 +423,8 @@ class _Rewriter:
                     milliseconds = str(round(float(period) * 1000))
                 except ValueError:
                     milliseconds = f"static_cast<int>(({period}) * 1000)"
-                edits.append(_Edit(match.start(), args[0][1], f"{macro}_THROTTLE({logger}, *get_clock(), {milliseconds}",
-                                   "cpp.log_throttle"))
+                edits.append(_Edit(match.start(), args[0][1],
+                                   f"{macro}_THROTTLE({logger}, *get_clock(), {milliseconds}", "cpp.log_throttle"))
             elif form == "_ONCE":
                 edits.append(_Edit(match.start(), opening + 1, f"{macro}_ONCE({logger}, ", "cpp.log_once"))
             elif form == "_COND":
@@ -548,16 +547,15 @@ class _Rewriter:
             result = f"std::make_shared<{alias}::Result>"
             feedback = f"std::make_shared<{alias}::Feedback>"
 
-            def ended(method: str):
+            def ended(method: str, made: str = result):
                 def replace(match: re.Match) -> str:
-                    given = match[1].strip()
-                    return f"goal_handle->{method}({result}({given}))"
+                    return f"goal_handle->{method}({made}({match[1].strip()}))"
                 return replace
 
             for old, new in (("setSucceeded", "succeed"), ("setAborted", "abort"), ("setPreempted", "canceled")):
                 body = re.sub(receiver + rf"{old}\s*\(([^()]*(?:\([^()]*\)[^()]*)*)\)", ended(new), body)
             body = re.sub(receiver + r"publishFeedback\s*\(([^()]*(?:\([^()]*\)[^()]*)*)\)",
-                          lambda m: f"goal_handle->publish_feedback({feedback}({m[1].strip()}))", body)
+                          ended("publish_feedback", feedback), body)
             body = re.sub(receiver + r"isPreemptRequested\s*\(\s*\)", "goal_handle->is_canceling()", body)
             body = re.sub(receiver + r"isActive\s*\(\s*\)", "goal_handle->is_active()", body)
         return body
@@ -605,7 +603,7 @@ class _Rewriter:
             for match in re.finditer(rf"(?<![\w.>:]){re.escape(name)}_\b", masked):
                 if self.in_class(match.start()) and WRITTEN.match(masked, match.end()):
                     self.todo(match.start(), "cpp.todo.parameter_written")
-        for name, (entry, names) in self.ported.items():
+        for name, (entry, given) in self.ported.items():
             found = self.method(name)
             if found is None:
                 continue
@@ -616,7 +614,7 @@ class _Rewriter:
             if entry.method == "on_{id}_result":
                 gone = (0, "cpp.todo.goal_state")
             if gone:
-                for match in re.finditer(rf"\b{re.escape(names[gone[0]])}\b", body):
+                for match in re.finditer(rf"\b{re.escape(given[gone[0]])}\b", body):
                     self.todo(brace + match.start(), gone[1])
             if entry.endpoint == "service_server":
                 for match in re.finditer(r"\breturn\s+false\s*;", body):
