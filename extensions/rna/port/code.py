@@ -139,8 +139,37 @@ def _merged(ours: str, base: str, theirs: str) -> tuple[str, bool]:
     return merge3(ours, base, theirs)
 
 
+def _python_methods(text: str, base_class: str) -> dict[str, tuple[int, int]]:
+    """The methods of the class deriving from `base_class`: name -> (first line, last line), from 0."""
+    try:
+        tree = ast.parse(text)
+    except SyntaxError:
+        return {}
+    for node in tree.body:
+        if isinstance(node, ast.ClassDef) and any(getattr(b, "id", None) == base_class for b in node.bases):
+            return {item.name: (min([item.lineno] + [d.lineno for d in item.decorator_list]) - 1, item.end_lineno - 1)
+                    for item in node.body if isinstance(item, (ast.FunctionDef, ast.AsyncFunctionDef))}
+    return {}
+
+
+def users_methods(ours: str, base: str, theirs: str, methods) -> str:
+    """`theirs` with each method the user changed as the old starter had it (`base`), so that the merge
+    takes the user's method whole: the starter's example code in a callback is the user's to replace,
+    and how the template changed that example does not matter any more. `methods(text)` finds them."""
+    mine, old, new = methods(ours), methods(base), methods(theirs)
+    ours_lines, base_lines, theirs_lines = ours.split("\n"), base.split("\n"), theirs.split("\n")
+    for name in sorted((name for name in mine if name in old and name in new), key=lambda n: -new[n][0]):
+        if ours_lines[mine[name][0]:mine[name][1] + 1] == base_lines[old[name][0]:old[name][1] + 1]:
+            continue
+        start, end = new[name]
+        theirs_lines[start:end + 1] = base_lines[old[name][0]:old[name][1] + 1]
+    return "\n".join(theirs_lines)
+
+
 def port_python(mine: str, old_starter: str, new_starter: str, context: python.Context) -> NodePort:
     ours, base = python.port(mine, context), python.port(old_starter, context)
+    new_starter = users_methods(ours.text, base.text, new_starter,
+                                lambda text: _python_methods(text, context.base_class))
     mine_user = user_lines(mine, old_starter)
     rewrites = [rewrite for rewrite in ours.rewrites if rewrite.line in mine_user]
     parts = [_python_parts(text) for text in (ours.text, base.text, new_starter)]

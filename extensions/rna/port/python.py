@@ -272,6 +272,14 @@ class _Rewriter:
         self.needed.add("rclpy.clock:Clock")
         return "Clock()"
 
+    def atom(self, node: ast.AST) -> str:
+        """`node` rewritten, in parentheses where an attribute access on it needs them."""
+        text = self.emit(node)
+        if isinstance(node, (ast.Name, ast.Attribute, ast.Call, ast.Subscript, ast.Constant, ast.List, ast.Tuple,
+                             ast.Dict, ast.Set, ast.JoinedStr)):
+            return text
+        return f"({text})"
+
     def tight(self, node: ast.AST, text: str) -> str:
         """`text` (a division, a `not`) parenthesized where its place needs it."""
         parent = self.parents.get(id(node))
@@ -543,7 +551,7 @@ class _Rewriter:
             return None
         if node.attr in ("secs", "nsecs") and (_dotted(value) or "").split(".")[-1] == "stamp":
             new = {"secs": "sec", "nsecs": "nanosec"}[node.attr]
-            return self.rewrote(node, "py.stamp_fields", f"{self.emit(value)}.{new}")
+            return self.rewrote(node, "py.stamp_fields", f"{self.atom(value)}.{new}")
         return None
 
     def _import(self, node: ast.Import | ast.ImportFrom) -> str | None:
@@ -682,7 +690,7 @@ class _Rewriter:
         receiver = _dotted(func.value) or ""
         attr = func.attr
         if attr in ("to_sec", "to_nsec") and not node.args and not node.keywords:
-            inner = self.emit(func.value)
+            inner = self.atom(func.value)
             if (_dotted(func.value) or "").split(".")[-1] == "stamp":
                 self.needed.add("rclpy.time:Time")
                 inner = f"Time.from_msg({inner})"
