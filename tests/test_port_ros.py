@@ -66,7 +66,7 @@ def ported_examples(ros1, ros2, tmp_path_factory) -> PortedExamples:
         port_examples.write_user_code(project, name)
         commit_all(project, "my ROS 1 code")
         shutil.copytree(project, catkin_ws / "src" / name, symlinks=True)
-        for build_type, workspace in colcon_ws.items():
+        for workspace in colcon_ws.values():
             shutil.copytree(project, workspace / "src" / name, symlinks=True)
     logs = tmp_path_factory.mktemp("port_logs")
     ros1.catkin_make(catkin_ws, ros1.env(ros1_support.free_port(), logs / "build_home"))
