@@ -56,6 +56,10 @@ RULES = (
     Rule("launch.find", "launch", "$(find pkg)", "$(find-pkg-share pkg)"),
     Rule("launch.rosparam", "launch", '<rosparam command="load" file="f"/>', '<param from="f"/>'),
     Rule("launch.param", "launch", '<param name="n" value="v" type="t"/>', '<param name="n" value="v"/>'),
+    Rule("launch.include", "launch", '<include file="$(find pkg)/launch/x.launch"/> of the package\'s own',
+         '<include file="$(find-pkg-share pkg)/launch/x.launch.xml"/>', "the package's roslaunch files are ported too"),
+    Rule("launch.set_parameter", "launch", '<param name="n" value="v"/> outside a <node>',
+         '<set_parameter name="n" value="v"/>', "for every node the launch file starts after it"),
     Rule("launch.group", "launch", '<group ns="n">', '<group><push-ros-namespace namespace="n"/>'),
     Rule("launch.todo", "launch", "<include> of a ROS 1 launch file, <machine>, <test>, inline <rosparam>, "
          "textfile or command parameters", "ROS 2's launch actions", todo=True),
@@ -160,9 +164,13 @@ def carry(mine: str, generated: str, fresh: str, port_run: Callable[[list[str], 
 
 
 def _todo_lines(comment: str, text: str, indent: str = "") -> list[str]:
-    width = max(WIDTH - len(indent) - len(comment) - 1, 40)
-    return [f"{indent}{comment} {line}" for line in textwrap.wrap(text, width, break_long_words=False,
-                                                                  break_on_hyphens=False)]
+    """`text` as comment lines at `indent`: `# ...`, or `<!-- ... -->` each (`comment` "<!--")."""
+    closing = " -->" if comment == "<!--" else ""
+    if closing:
+        text = text.removesuffix(" -->").replace("--", "- -")
+    width = max(WIDTH - len(indent) - len(comment) - len(closing) - 1, 40)
+    return [f"{indent}{comment} {line}{closing}" for line in textwrap.wrap(text, width, break_long_words=False,
+                                                                           break_on_hyphens=False)]
 
 
 # --- CMake
@@ -443,6 +451,7 @@ class LaunchContext:
     package: str
     executables: tuple[tuple[str, str], ...] = ()  # (ROS 1 executable, ROS 2 one) of the package's nodes
     launch_format: str = "xml"
+    launch_files: tuple[tuple[str, str], ...] = ()  # (ROS 1 launch file, ROS 2 one) of the package: launch/x.launch
 
 
 def _element_end(lines: list[str], start: int) -> int:
@@ -458,7 +467,7 @@ def _element_end(lines: list[str], start: int) -> int:
     return len(lines) - 1
 
 
-def _launch_line(line: str, context: LaunchContext) -> tuple[str, list[str], str | None]:
+def _launch_line(line: str, context: LaunchContext, in_node: bool = False) -> tuple[str, list[str], str | None]:
     used = []
     new = line
     if "$(find " in new:
@@ -502,8 +511,15 @@ def _launch_line(line: str, context: LaunchContext) -> tuple[str, list[str], str
         new = f'{group[1]}<group>\n{group[1]}  <push-ros-namespace namespace="{group[2]}"/>'
         used.append("launch.group")
     include = re.search(r'<include\s+file="([^"]*)"', new)
-    if include and include[1].endswith(".launch"):
+    own = f"$(find-pkg-share {context.package})/"
+    launch_files = {f"launch/{ros1}": f"launch/{ros2}" for ros1, ros2 in context.launch_files}
+    if include and include[1].startswith(own) and include[1][len(own):] in launch_files:
+        ported = own + launch_files[include[1][len(own):]]
+        new, used = new.replace(include[1], ported), used + ["launch.include"]
+    elif include and include[1].endswith(".launch"):
         return line, used, "include the package's ROS 2 launch file ($(find-pkg-share pkg)/launch/x.launch.xml)"
+    if not in_node and re.search(r"<param\b", new):
+        new, used = re.sub(r"<param\b", "<set_parameter", new), used + ["launch.set_parameter"]
     if LAUNCH_TODO_ELEMENTS.search(new):
         return line, used, "ROS 2 launch has no <machine> or <test> (launch_testing tests)"
     return new, list(dict.fromkeys(used)), None
@@ -515,10 +531,12 @@ def port_launch_lines(lines: list[str], first: int, context: LaunchContext) -> t
                 "(ROS 2's XML launch files read them nearly as they are)")
         return _todo_lines("#", f"{TODO}: {todo}") + [f"# {line}" for line in lines], [], 1
     out, rewrites, todos = [], [], 0
-    index = 0
+    index, in_node = 0, 0
     while index < len(lines):
         line = lines[index]
-        new, used, todo = _launch_line(line, context)
+        new, used, todo = _launch_line(line, context, in_node > 0)
+        masked = re.sub(r"<!--.*?-->", "", line)
+        in_node += len(re.findall(r"<node\b(?![^>]*/>)", masked)) - masked.count("</node>")
         if todo:
             end = _element_end(lines, index) if re.search(r"<[\w-]+", line) else index
             indent = re.match(r"\s*", line)[0]
@@ -535,6 +553,13 @@ def port_launch_lines(lines: list[str], first: int, context: LaunchContext) -> t
             pass
         index += 1
     return out, rewrites, todos
+
+
+def port_launch_file(text: str, context: LaunchContext) -> Carried:
+    """A roslaunch file of the user's own, as a ROS 2 XML launch file."""
+    lines, rewrites, todos = port_launch_lines(text.split("\n"), 1, LaunchContext(
+        context.package, context.executables, "xml", context.launch_files))
+    return Carried("\n".join(lines), rewrites, todos)
 
 
 def launch_default(theirs: list[str]) -> int:

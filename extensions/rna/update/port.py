@@ -222,18 +222,55 @@ def port_build_files(project: Project, old: Render, new: Render, packages: tuple
     return handled
 
 
+ROS1_LAUNCH = ".launch"  # roslaunch's files; ROS 2 reads XML ones named *.launch.xml
+
+
+def launch_context(project: Project, packages: tuple[Package, Package]) -> build.LaunchContext:
+    """The package's nodes' executables and launch files, ROS 1's -> ROS 2's."""
+    old_package, new_package = packages
+    executables = tuple((node.executable, next(n.executable for n in new_package.nodes if n.name == node.name))
+                        for node in old_package.nodes if any(n.name == node.name for n in new_package.nodes))
+    launch = f"{_in(old_package, 'launch')}/"
+    files = {path[len(launch):]: path[len(launch):] + ".xml" for path in project.committed_files
+             if path.startswith(launch) and path.endswith(ROS1_LAUNCH) and "/" not in path[len(launch):]}
+    files[posixpath.basename(old_package.launch_file)] = posixpath.basename(new_package.launch_file)
+    return build.LaunchContext(new_package.name, executables, new_package.launch_format,
+                               tuple(sorted(files.items())))
+
+
 def port_launch_file(project: Project, old: Render, new: Render, packages: tuple[Package, Package],
                      report: Report) -> set[str]:
     """The user's lines of the roslaunch file, in the ROS 2 launch file."""
     old_package, new_package = packages
     if old_package.target == "node":
         return set()
-    executables = tuple((node.executable, next(n.executable for n in new_package.nodes if n.name == node.name))
-                        for node in old_package.nodes if any(n.name == node.name for n in new_package.nodes))
-    context = build.LaunchContext(new_package.name, executables, new_package.launch_format)
+    context = launch_context(project, packages)
     return _carried(project, old, new, _in(old_package, old_package.launch_file),
                     _in(new_package, new_package.launch_file), report,
                     lambda mine, generated, fresh: build.carry_launch(mine, generated, fresh, context))
+
+
+def port_own_launch_files(project: Project, old: Render, packages: tuple[Package, Package],
+                          report: Report) -> set[str]:
+    """The user's own roslaunch files in the package's launch/, as ROS 2 XML launch files beside it."""
+    old_package, _ = packages
+    if old_package.target == "node":
+        return set()
+    context = launch_context(project, packages)
+    launch = f"{_in(old_package, 'launch')}/"
+    handled = set()
+    for path in sorted(project.committed_files):
+        if not path.startswith(launch) or not path.endswith(ROS1_LAUNCH) or path in old.files:
+            continue
+        target = path + ".xml"
+        if (project.root / target).exists():
+            continue
+        result = build.port_launch_file(project.committed(path) or "", context)
+        project.write(target, result.text)
+        project.remove(path)
+        report.ported.append(Ported(target, path, tuple(result.rewrites), result.todos))
+        handled |= {path, target}
+    return handled
 
 
 def port_config_files(project: Project, old: Render, new: Render, packages: tuple[Package, Package],
@@ -310,9 +347,11 @@ def port_package(project: Project, old: Render, new: Render, packages: tuple[Pac
     if not porting(packages):
         return set()
     handled = port_node_files(project, old, new, packages, report, renamed or {})
-    handled |= port_own_code(project, old, new, packages, report)
-    handled |= port_build_files(project, old, new, packages, report)
+    if packages[0].target == "package":  # a node's own package is the user's: only the node is ported
+        handled |= port_own_code(project, old, new, packages, report)
+        handled |= port_build_files(project, old, new, packages, report)
     handled |= port_launch_file(project, old, new, packages, report)
+    handled |= port_own_launch_files(project, old, packages, report)
     handled |= port_config_files(project, old, new, packages, report)
     report.notes.append(
         "Ported from ROS 1: the ROS 1 package is your last commit. Compare each file with it: "
