@@ -631,6 +631,12 @@ class _Rewriter:
     def insert_todos(self) -> None:
         lines = self.text.split("\n")
         for line in sorted(self.todos, reverse=True):
+            index = line - 2
+            while index >= 0 and lines[index].strip().startswith("//") and not lines[index].strip().startswith(
+                    "// TODO(port)"):
+                index -= 1
+            if index >= 0 and lines[index].strip().startswith("// TODO(port)"):
+                continue  # marked already (a file ported twice)
             indent = re.match(r"[ \t]*", lines[line - 1])[0]
             comments = []
             for key in self.todos[line]:

@@ -386,8 +386,10 @@ class _Rewriter:
         return "".join(out)
 
     def _with_lines(self, node: ast.stmt, text: str) -> str:
-        """The statement with the lines put before and after it (prologues, TODOs)."""
-        before = [comment for key in self.todos.get(id(node), []) for comment in self._comment(key, node)]
+        """The statement with the lines put before and after it (prologues, TODOs); a TODO already
+        above it (a file ported twice) is not written again."""
+        before = [] if self._todo_above(node) else [
+            comment for key in self.todos.get(id(node), []) for comment in self._comment(key, node)]
         before += self.before.get(id(node), [])
         after = self.after.get(id(node), [])
         if not before and not after:
@@ -397,6 +399,15 @@ class _Rewriter:
             return "\n".join(before[:1] + [indent + line for line in before[1:]])
         return "".join(line + "\n" + indent for line in before) + text + "".join(
             "\n" + indent + line for line in after)
+
+    def _todo_above(self, node: ast.stmt) -> bool:
+        """Whether the comment lines right above the statement hold a TODO(port) already."""
+        index = node.lineno - 2
+        while index >= 0 and self.lines[index].strip().startswith("#"):
+            if self.lines[index].strip().startswith(f"# {TODO}"):
+                return True
+            index -= 1
+        return False
 
     def _comment(self, key: str, node: ast.AST) -> list[str]:
         width = max(WIDTH - len(self.indent(node)) - 2, 40)
@@ -595,7 +606,7 @@ class _Rewriter:
                 statements[module].append(name)
         if not changed:
             return None
-        lines = [f"from {module} import {', '.join(names)}" for module, names in statements.items()]
+        lines = [f"from {module} import {', '.join(names)}" for module, names in sorted(statements.items())]
         return self.rewrote(node, key, ("\n" + self.indent(node)).join(lines))
 
     def _statement_call(self, node: ast.Expr) -> str | None:
