@@ -228,8 +228,38 @@ def _include_lines(ours: list[str], base: list[str], theirs: list[str], needed: 
     return include_block(every).split("\n")
 
 
+def _cpp_methods(text: str, class_name: str) -> dict[str, tuple[int, int]]:
+    """The methods defined in the class `class_name`: name -> (first line, last line), from 0."""
+    masked = cpp.mask(text)
+    match = re.search(rf"\bclass\s+{re.escape(class_name)}\b[^;{{]*\{{", masked)
+    if not match:
+        return {}
+    opening = match.end() - 1
+    end = cpp.closing(masked, opening)
+    found, index = {}, opening + 1
+    declaration = re.compile(r"^[ \t]*(?:virtual[ \t]+|explicit[ \t]+)?(?:[\w:<>,&*~]+[ \t]+)*?[&*]?[ \t]*(~?\w+)\s*\(",
+                             re.M)
+    while True:
+        method = declaration.search(masked, index, end)
+        if not method:
+            return found
+        parameters_end = cpp.closing(masked, method.end() - 1)
+        body = re.match(r"[^;{]*\{", masked[parameters_end + 1:]) if parameters_end > 0 else None
+        if body is None:
+            index = method.end()
+            continue
+        brace = parameters_end + body.end()
+        body_end = cpp.closing(masked, brace)
+        if body_end < 0:
+            return found
+        found[method[1]] = (masked.count("\n", 0, method.start()), masked.count("\n", 0, body_end))
+        index = body_end + 1
+
+
 def port_cpp(mine: str, old_starter: str, new_starter: str, context: cpp.Context) -> NodePort:
     ours, base = cpp.port(mine, context), cpp.port(old_starter, context)
+    new_starter = users_methods(ours.text, base.text, new_starter,
+                                lambda text: _cpp_methods(text, context.class_name))
     mine_user = user_lines(mine, old_starter)
     rewrites = [rewrite for rewrite in ours.rewrites if rewrite.line in mine_user]
     parts = [_cpp_parts(text) for text in (ours.text, base.text, new_starter)]

@@ -165,19 +165,37 @@ class _Rewriter:
         return self.text.count("\n", 0, index) + 1
 
     def apply(self, edits: list[_Edit]) -> None:
-        """Apply non-overlapping edits (an edit inside one kept before it is dropped)."""
+        """Apply non-overlapping edits (an edit inside one kept before it is dropped); each line they
+        change is recorded whole, before and after, with the rules used on it."""
         kept, last = [], -1
         for edit in sorted(edits, key=lambda e: (e.start, -e.end)):
             if edit.start < last:
                 continue
             kept.append(edit)
             last = edit.end
+        if not kept:
+            return
+        lines = self.text.split("\n")
+        changed: dict[int, list[str]] = {}
         for edit in kept:
-            before = self.text[edit.start:edit.end]
-            self.rewrites.append(Rewrite(self.line_of(edit.start), edit.rule, " ".join(before.split()),
-                                         " ".join(edit.text.split())))
+            first, last_line = self.line_of(edit.start), self.line_of(max(edit.end - 1, edit.start))
+            changed.setdefault(first, [])
+            if edit.rule not in changed[first]:
+                changed[first].append(edit.rule)
+            for line in range(first + 1, last_line + 1):
+                changed.setdefault(line, [])
+        before = {line: lines[line - 1] for line in changed}
         for edit in reversed(kept):
             self.text = self.text[:edit.start] + edit.text + self.text[edit.end:]
+        after = self.text.split("\n")
+        if len(after) != len(lines):  # an edit changed the number of lines: recorded by its span alone
+            for edit in kept:
+                self.rewrites.append(Rewrite(self.line_of(edit.start), edit.rule, "", " ".join(edit.text.split())))
+            return
+        for line, keys in sorted(changed.items()):
+            if keys:
+                self.rewrites.append(Rewrite(line, ", ".join(keys), " ".join(before[line].split()),
+                                             " ".join(after[line - 1].split())))
 
     def todo(self, index: int, key: str) -> None:
         keys = self.todos.setdefault(self.line_of(index), [])
@@ -333,6 +351,8 @@ class _Rewriter:
                 edits.append(_Edit(match.start(), opening, "rclcpp::Time", "cpp.time"))
         for match in re.finditer(r"\bros::(Rate|WallRate)\b", masked):
             edits.append(_Edit(match.start(), match.end(), f"rclcpp::{match[1]}", "cpp.rate"))
+        for match in re.finditer(r"\bros::(Time|Duration)\b(?!\s*(?:::|\())", masked):  # the types
+            edits.append(_Edit(match.start(), match.end(), f"rclcpp::{match[1]}", "cpp.time"))
         for match in re.finditer(r"\bros::ok\s*\(\s*\)", masked):
             edits.append(_Edit(match.start(), match.end(), "rclcpp::ok()", "cpp.ok"))
         for match in re.finditer(r"\bros::isShuttingDown\s*\(\s*\)", masked):
