@@ -107,7 +107,7 @@ def test_the_ros1_example_runs_on_ros1(ported_examples, name):
 
 @pytest.mark.parametrize("build_type", BUILD_TYPES)
 @pytest.mark.parametrize("name", sorted(port_examples.EXAMPLES))
-def test_the_port_rewrites_every_ros1_line_of_the_example(ported_examples, name, build_type):
+def test_the_port_rewrites_every_ros1_line_of_the_example(ported_examples, ros2, name, build_type):
     result = ported_examples.updates[name, build_type]
     assert result.returncode == 0, result
     assert "ported to ROS 2" in result.stdout and "0 lines left marked TODO(port)" in result.stdout, result
@@ -115,6 +115,10 @@ def test_the_port_rewrites_every_ros1_line_of_the_example(ported_examples, name,
     assert not (package / "scripts").exists() and not (package / "src").exists(), "ROS 1's node folders are left"
     code = "\n".join(path.read_text() for path in (package / package.name).glob("*.py"))
     assert "rospy" not in code and "TODO(port)" not in code, code
+    # the linters the ROS 2 package's own tests run pass on the ported code
+    for linter in (ros2.flake8, ros2.pep257):
+        returncode, output = linter([package / package.name])
+        assert returncode == 0, output
 
 
 @pytest.mark.parametrize("build_type", BUILD_TYPES)

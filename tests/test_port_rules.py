@@ -158,6 +158,22 @@ def test_code_outside_the_node_logs_to_a_named_logger_and_imports_what_it_uses()
                     "def warn(x):\n    get_logger('robot').warning(f'x={x}')\n    return Clock().now()\n")
 
 
+def test_a_rewrite_longer_than_flake8s_lines_is_broken_as_ros2_code_is():
+    long = ("        self.get_logger().info(f\"talker says {msg.data} after {elapsed:.1f} s at "
+            "{self.get_parameter('rate').value} Hz\")")
+    assert python.wrapped(long, set()).split("\n") == [
+        "        self.get_logger().info(",
+        "            f\"talker says {msg.data} after {elapsed:.1f} s at {self.get_parameter('rate').value} \"",
+        "            'Hz')"]
+    shorter = "        self.get_logger().info(f'mover got target at x={msg.x:.1f} in {msg.header.frame_id} (stamped)')"
+    assert python.wrapped(shorter, set()).split("\n") == [
+        "        self.get_logger().info(",
+        "            f'mover got target at x={msg.x:.1f} in {msg.header.frame_id} (stamped)')"]
+    assert python.wrapped(long, {long}) == long  # as long before the port: the user's
+    unbreakable = "        x = " + "y" * 95
+    assert python.wrapped(unbreakable, set()) == unbreakable
+
+
 def test_a_file_that_is_not_python_is_marked_at_its_top():
     ported = python.port("def broken(:\n", NODE)
     assert ported.text.startswith("# TODO(port): this file is not Python") and len(ported.todos) == 1
@@ -207,6 +223,7 @@ def test_drawn_python_ports_to_python_with_every_ros1_line_marked_and_the_rest_k
     ported = python.port(text, NODE)
     ast.parse(ported.text)  # reads as Python
     lines = ported.text.split("\n")
+    assert all(len(line) <= python.WIDTH for line in lines if line not in text.split("\n")), ported.text
     for index, line in enumerate(lines):
         if ROS1_NAMES.search(line) and not line.lstrip().startswith("#"):
             above = [previous for previous in lines[:index] if previous.strip()][-3:]

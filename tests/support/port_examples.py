@@ -42,7 +42,7 @@ USER_CODE = {
 """),
         ("scripts/talker.py", """        msg = String()
         msg.data = f'Hello World: {self.count}'
-        rospy.loginfo(f'Publishing: "{msg.data}"')
+        rospy.loginfo_throttle(1.0, f'Publishing: "{msg.data}"')
         self.chatter_publisher.publish(msg)
         self.count += 1
 """, """        msg = String()

@@ -102,6 +102,94 @@ def port(text: str, context: Context = Context()) -> Ported:
     return _Rewriter(text, tree, context).run()
 
 
+def wrapped(text: str, unchanged: set[str]) -> str:
+    """`text` with each line a rewrite made longer than flake8's 99 columns broken as ROS 2 code is:
+    after the call's opening bracket, and a long string argument cut at its spaces. A line that
+    cannot be broken so (or was that long before) stays as it is."""
+    lines = text.split("\n")
+    out = []
+    for line in lines:
+        if len(line) <= WIDTH or line in unchanged:
+            out.append(line)
+            continue
+        out += _broken(line) or [line]
+    return "\n".join(out)
+
+
+def _broken(line: str) -> list[str] | None:
+    indent = line[:len(line) - len(line.lstrip())]
+    try:
+        statement = ast.parse(line.strip()).body
+    except SyntaxError:
+        return None
+    if len(statement) != 1 or not isinstance(statement[0], (ast.Expr, ast.Assign)):
+        return None
+    call = statement[0].value
+    if not isinstance(call, ast.Call) or not (call.args or call.keywords) or call.end_col_offset != len(line.strip()):
+        return None
+    code = line.strip()
+    opening = call.func.end_col_offset
+    if code[opening] != "(":
+        return None
+    inner, inside = code[opening + 1:-1], indent + "    "
+    lines = [indent + code[:opening + 1], inside + inner + ")"]
+    if len(lines[1]) <= WIDTH:
+        return lines
+    first = call.args[0] if call.args else None
+    if not isinstance(first, (ast.Constant, ast.JoinedStr)) or (isinstance(first, ast.Constant) and not isinstance(
+            first.value, str)):
+        return None
+    literal = code[first.col_offset:first.end_col_offset]
+    rest = code[first.end_col_offset:-1] + ")"
+    pieces = _cut_literal(literal, WIDTH - len(inside))
+    if pieces is None:
+        return None
+    result = [lines[0], *(inside + piece for piece in pieces[:-1]), inside + pieces[-1] + rest]
+    if any(len(piece) > WIDTH for piece in result):
+        return None
+    try:
+        ast.parse("\n".join(piece.strip() if index == 0 else piece for index, piece in enumerate(result)).strip())
+    except SyntaxError:
+        return None
+    return result
+
+
+def _cut_literal(literal: str, room: int) -> list[str] | None:
+    """A one-line string literal as adjacent literals of at most `room` columns, cut after spaces
+    outside its {fields}; an f-string's piece without a field is a plain string (flake8 F541)."""
+    match = re.fullmatch(r"([fF]?)(['\"])(.*)\2", literal)
+    if not match or "\\" in literal:
+        return None
+    prefix, quote, body = match[1], match[2], match[3]
+    cuts, depth = [], 0
+    for index, char in enumerate(body):
+        if prefix and char == "{":
+            depth += 1
+        elif prefix and char == "}":
+            depth -= 1
+        elif char == " " and depth == 0:
+            cuts.append(index + 1)
+    pieces, start = [], 0
+    while len(body) - start + 3 > room:
+        fitting = [cut for cut in cuts if start < cut and cut - start + 3 <= room]
+        if not fitting:
+            return None
+        pieces.append(body[start:fitting[-1]])
+        start = fitting[-1]
+    pieces.append(body[start:])
+
+    def spelled(piece: str) -> str:
+        fields = prefix and re.search(r"(?<!\{)\{(?!\{)", piece)
+        if prefix and not fields:
+            piece = piece.replace("{{", "{").replace("}}", "}")
+        # flake8-quotes: single quotes, unless the piece holds one
+        own = quote if quote in piece else ("'" if "'" not in piece else '"')
+        if (own == "'" and "'" in piece) or (own == '"' and '"' in piece):
+            own = quote
+        return (prefix if fields else "") + own + piece + own
+    return [spelled(piece) for piece in pieces]
+
+
 def _dotted(node: ast.AST) -> str | None:
     if isinstance(node, ast.Name):
         return node.id
@@ -305,7 +393,7 @@ class _Rewriter:
     # --- the walk
 
     def run(self) -> Ported:
-        text = self.splice(self.tree, 0, len(self.text))
+        text = wrapped(self.splice(self.tree, 0, len(self.text)), set(self.text.split("\n")))
         if self.needed and not self.ctx.base_class:  # a file of the user's own: its imports are added here
             text = self._add_imports(text)
         todos = [(self._line_of(key), rule_key) for key, rules in self.todos.items() for rule_key in rules]
