@@ -11,7 +11,12 @@ rules of rna.port:
 - the user's lines of CMakeLists.txt, package.xml (the package's and the interfaces
   package's) and the launch file: carried into the ROS 2 ones, rewritten, or commented
   out under a TODO(port) note where they name ROS 1 things no rule rewrites (rna.port.build);
+- the user's own roslaunch files: ROS 2 XML launch files beside them;
 - config files: the user's tuned values and lines, in `ros__parameters` form.
+
+A node added to a package the template did not make is ported alone: the package's own
+files are the user's (refusals.port_error makes sure they are ROS 2's already), and the
+node's block in its build files is add_node.py's, run by the same update.
 
 Every rewrite and every TODO(port) is listed in the summary; the ROS 1 package stays in
 git history (the update needs a clean tree), which the summary says how to compare with.
@@ -22,17 +27,17 @@ from __future__ import annotations
 import posixpath
 import re
 
+from .. import distros, layout
 from ..catalogue import load as load_catalogue
 from ..dialects import dialect
 from ..model import Action, Node, Package, Service, Timer, Topic
-from .. import layout
 from ..port import api, build, code, cpp, python
 from . import config_merge, merge
 from .project import Project, Render
 from .protect import edited
 from .summary import Ported, Report
 
-ROS1_DISTRO = "noetic"
+ROS1_DISTRO = distros.ROS1_DISTROS[0]  # whose catalogue says which ROS 1 types are messages, services, actions
 CODE_SUFFIXES = (".py", ".cpp", ".h", ".hpp", ".cc", ".hh", ".hxx", ".cxx")
 
 
