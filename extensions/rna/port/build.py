@@ -348,8 +348,6 @@ def port_cmake_lines(lines: list[str], first: int, context: CMakeContext) -> tup
         if kind == "other":
             out.append(piece)
             continue
-        stripped = piece.strip()
-        keyword = stripped.split()[0] if stripped.split() else ""
         ported, used, todo = port_cmake_command(piece, context)
         if todo:
             out.append("\n".join(_commented(piece, todo)))
@@ -362,7 +360,6 @@ def port_cmake_lines(lines: list[str], first: int, context: CMakeContext) -> tup
             rewrites.append(f"line {number}: {' '.join(piece.split())} -> {' '.join(ported.split()) or '(removed)'}")
         else:
             out.append(piece)
-        del keyword
     carried = [line for line in "".join(out).split("\n") if line.strip() != REMOVED]
     # catkin_package()'s keyword lines, carried alone (the user changed one of the template's)
     result = []
@@ -380,7 +377,7 @@ def port_cmake_lines(lines: list[str], first: int, context: CMakeContext) -> tup
             todos += 1
             continue
         result.append(text_line)
-    return [line for line in result if line != "" or True], rewrites, todos
+    return result, rewrites, todos
 
 
 def cmake_default(theirs: list[str]) -> int:

@@ -331,7 +331,6 @@ class _Rewriter:
                                else "rclcpp::Clock().now()", "cpp.now"))
         for match, opening, end in call(r"\bros::Duration\s*\("):
             args = arguments(masked, opening, end)
-            after = self.text[end + 1:end + 12]
             if re.match(r"\s*\.\s*sleep\s*\(\s*\)", masked[end + 1:end + 20]) and len(args) == 1:
                 sleep = re.match(r"\s*\.\s*sleep\s*\(\s*\)", masked[end + 1:])
                 seconds = self.text[args[0][0]:args[0][1]].strip()
@@ -339,7 +338,6 @@ class _Rewriter:
                 edits.append(_Edit(match.start(), end + 1 + sleep.end(),
                                    f"rclcpp::sleep_for({self.chrono(seconds)})", "cpp.sleep"))
                 continue
-            del after
             if len(args) == 1:
                 edits.append(_Edit(match.start(), end + 1, "rclcpp::Duration::from_seconds("
                                    f"{self.text[args[0][0]:args[0][1]].strip()})", "cpp.duration"))
