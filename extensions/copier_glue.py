@@ -19,7 +19,6 @@ import shutil
 import subprocess
 import sys
 import tempfile
-import textwrap
 import types
 from collections.abc import Mapping
 from pathlib import Path
@@ -63,10 +62,15 @@ try:
         import rna.update.refusals
         import rna.update.rename_answers
         import rna.update.resolve
+        import rna.terminal
         import rna.wording
         import rna.workspace
 finally:
     sys.path.remove(str(_HERE))
+
+# Copier's prompts show their lines and an answer's error whole, wrapped at the terminal's width.
+rna.terminal.show_whole_validation_errors()
+rna.terminal.fit_copiers_questions()
 
 
 def _answers(context) -> rna.Answers:
@@ -87,19 +91,12 @@ def answer_error(context, question: str) -> str:
     error = rna.question_error(question, context)
     if error is None and question == "node_name" and context.get("target") == "node":
         taken = _files_in_the_way(context, context.get("node_name"), rna.distros.languages(context.get("build_type")))
-        error = f"{taken[0]} is already in the package: choose another name" if taken else None
+        error = f"choose another name: {taken[0]} is already in the package" if taken else None
     if error is None and (previous := _previous_answers(context)) is not None:
         refused = rna.update.refusals.switch_error(previous, context)
         error = refused.message if refused and refused.question == question else None
-    return _under_the_prompt(question, error) if error else ""
-
-
-def _under_the_prompt(question: str, error: str) -> str:
-    """The error in lines an 80-column terminal shows whole, after the prefix Copier puts first."""
-    prefix = f"Validation error for question '{question}': "
-    wrapped = textwrap.fill(error, 79, initial_indent=" " * len(prefix), break_long_words=False,
-                            break_on_hyphens=False)
-    return wrapped[len(prefix):]
+    # Shown whole under the prompt, wrapped at the terminal's width (rna/terminal.py).
+    return error or ""
 
 
 def _files_in_the_way(context, name: str, languages) -> list[str]:
@@ -115,8 +112,9 @@ def _files_in_the_way(context, name: str, languages) -> list[str]:
 
 @pass_context
 def default_description(context) -> str:
-    """The default description: what the nodes answered so far do."""
-    return _answers(context).default_description
+    """The default description: what the nodes answered so far do; at a terminal, as much as the
+    prompt shows on its line (after Copier's two columns), which would wrap a longer one mid-word."""
+    return _answers(context).default_description(rna.terminal.width() - 2 if _interactive(context) else None)
 
 
 @pass_context
@@ -129,8 +127,11 @@ _dialogs: dict[str, list] = {}  # the dialog's result, per destination and start
 
 
 def _interactive(context) -> bool:
+    """Whether the dialog can ask at the terminal: not with --defaults, nor under copier-tui
+    (copier_ui), which draws its own form on the terminal the dialog would draw over."""
     conf = context.get("_copier_conf") or {}
-    return not conf.get("defaults") and sys.stdin.isatty() and sys.stdout.isatty()
+    return (not conf.get("defaults") and sys.stdin.isatty() and sys.stdout.isatty()
+            and "copier_ui" not in sys.modules)
 
 
 def _dialog_wanted(context) -> bool:
@@ -138,10 +139,12 @@ def _dialog_wanted(context) -> bool:
 
 
 def _dialog_start(context) -> tuple[str, list]:
-    """The cache key and the nodes the dialog starts from: the answers updated, or the demo."""
+    """The cache key and the nodes the dialog starts from: the answers updated, or none (a new
+    package's nodes are the user's from the first; without a terminal the demo stands in)."""
     previous = _previous_answers(context) if context.get("edit_nodes") is True else None
     start = previous.get("nodes") if previous and isinstance(previous.get("nodes"), list) else None
-    start = rna.update.resolve.resolved({**previous, "nodes": start})["nodes"] if start else rna.answers.DEMO_NODES
+    start = (rna.update.resolve.resolved({**previous, "nodes": start})["nodes"] if start
+             else [] if _interactive(context) else rna.answers.DEMO_NODES)
     destination = str((context.get("_copier_conf") or {}).get("dst_path"))
     return json.dumps([destination, start], sort_keys=True, default=str), start
 
@@ -168,6 +171,12 @@ def nodes_dialog(context) -> str:
         existing = context.get("edit_nodes") is True and _previous_answers(context) is not None
         _dialogs[key] = rna.dialog.Dialog(start, rules, found=found, own=own, existing=existing).run()
     return yaml.safe_dump(_dialogs[key], sort_keys=False)
+
+
+@pass_context
+def updating(context) -> bool:
+    """Whether this run updates a package (its answers file was in the destination before)."""
+    return _previous_answers(context) is not None
 
 
 @pass_context
@@ -277,6 +286,11 @@ def _git_user_settings() -> dict[str, str]:
     return settings
 
 
+def copier_command() -> str:
+    """How the user runs this Copier again (rna/terminal.py), for the commands messages print."""
+    return rna.terminal.copier_command(dict(os.environ), sys.executable, shutil.which)
+
+
 def in_git_work_tree(path) -> bool:
     """Whether `path` is inside a git work tree (`copier update` needs one)."""
     try:
@@ -328,7 +342,8 @@ class RnaExtension(ContextHook):
             nodes_dialog=nodes_dialog, nodes_dialog_pending=nodes_dialog_pending,
             existing_package=existing_package, found_interfaces=found_interfaces, git_config=git_config,
             porting_from_ros1=porting_from_ros1,
-            in_git_work_tree=in_git_work_tree, lab=lab, docs_url=rna.lab.docs_url,
+            in_git_work_tree=in_git_work_tree, lab=lab, docs_url=rna.lab.docs_url, copier_command=copier_command,
+            updating=updating,
             login_name=getpass.getuser,
             package_files=package_files,
             python_init_file=python_init_file, user_files=user_files,
@@ -868,5 +883,5 @@ def _refuse_to_overwrite(package, context) -> None:
     node = package.nodes[0]
     taken = _files_in_the_way(context, node.name, (node.language,))
     if taken:
-        raise UserMessageError(f"rna-template: invalid answer to 'nodes': {taken[0]} already exists in "
-                               f"{package.name}; choose another node name (nothing was written)")
+        raise UserMessageError(f"rna-template: invalid answer to 'nodes': choose another node name: {taken[0]} "
+                               f"already exists in {package.name} (nothing was written)")

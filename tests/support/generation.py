@@ -51,6 +51,12 @@ def subprocess_env() -> dict[str, str]:
     return {**os.environ, **GIT_IDENTITY, "NO_COLOR": "1", "GIT_CONFIG_NOSYSTEM": "1"}
 
 
+def copier_installed_by_pipx() -> dict[str, str]:
+    """The environment of a Copier on the user's PATH (pipx's way), not one that came through
+    tests/env, whose messages name that script instead (rna/terminal.py, copier_command)."""
+    return {key: value for key, value in os.environ.items() if key != "RNA_TEMPLATE_ENV"}
+
+
 def copy_counted(instrumentation: str, template: Path, destination: Path, answers: dict,
                  env: dict[str, str] | None = None) -> object:
     """`copier copy` of the template's HEAD in a Python process of its own, after `instrumentation`
