@@ -40,14 +40,24 @@ class Unavailable(Exception):
 
 
 def find_python(version: str) -> Path | None:
-    """An interpreter of `version` (e.g. "3.12"): on PATH as python3.12, or the newest pyenv one."""
-    found = shutil.which(f"python{version}")
-    if found:
-        return Path(found)
+    """An interpreter of `version` (e.g. "3.12") that runs: the newest pyenv one, or python3.12 on
+    PATH (pyenv's shim of that name runs only where that version is selected)."""
     pyenv = Path(os.environ.get("PYENV_ROOT") or Path.home() / ".pyenv")
     installed = sorted(glob.glob(str(pyenv / "versions" / f"{version}.*" / "bin" / f"python{version}")),
                        key=lambda path: [int(part) for part in re.findall(r"\d+", Path(path).parents[1].name)])
-    return Path(installed[-1]) if installed else None
+    for candidate in [*reversed(installed), shutil.which(f"python{version}")]:
+        if candidate and _runs_as(Path(candidate), version):
+            return Path(candidate)
+    return None
+
+
+def _runs_as(interpreter: Path, version: str) -> bool:
+    try:
+        result = subprocess.run([str(interpreter), "-c", "import sys, venv; print('%d.%d' % sys.version_info[:2])"],
+                                capture_output=True, text=True, timeout=60, check=False)
+    except OSError:
+        return False
+    return result.returncode == 0 and result.stdout.strip() == version
 
 
 def python(version: str) -> Path:
