@@ -160,7 +160,9 @@ def _dataclasses_differ(module: types.ModuleType | None = None) -> str | None:
     return None
 
 
-def _copier_worker_differs(method: str, parameters: list[str] | None = None) -> str | None:
+def _copier_worker_differs(method: str, parameters: list[str] | None, uses: tuple[str, ...]) -> str | None:
+    """Whether Copier's Worker differs from the one the wrapper of `method` was written for: the
+    method (or property) itself, and the members the wrapper reads (`uses`)."""
     try:
         from copier._main import Worker
     except ImportError:
@@ -170,11 +172,16 @@ def _copier_worker_differs(method: str, parameters: list[str] | None = None) -> 
         return f"Copier's Worker.{method} is not a property"
     if parameters is not None and (not isinstance(member, types.FunctionType) or _parameters(member) != parameters):
         return f"Copier's Worker.{method} is not the method it was"
+    fields = getattr(Worker, "__dataclass_fields__", {})
+    missing = [name for name in uses if name not in fields and inspect.getattr_static(Worker, name, None) is None]
+    if missing:
+        return f"Copier's Worker has no {', '.join(missing)}"
     return _copier_differs()
 
 
 def _git_file_mode_differs() -> str | None:
-    return _copier_worker_differs("_sync_git_index_executable_bit", ["self", "dst_relpath", "src_mode"])
+    return _copier_worker_differs("_sync_git_index_executable_bit", ["self", "dst_relpath", "src_mode"],
+                                  ("jinja_env", "subproject"))
 
 
 def _answers_file_name_differs() -> str | None:
@@ -184,7 +191,7 @@ def _answers_file_name_differs() -> str | None:
         return "Copier has no copier._types.Phase"
     if not hasattr(Phase, "RENDER") or not hasattr(Phase, "current"):
         return "Copier's Phase has no RENDER or current()"
-    return _copier_worker_differs("answers_relpath")
+    return _copier_worker_differs("answers_relpath", None, ("jinja_env", "answers", "answers_file", "template"))
 
 
 _GUARDS = {"strings": _strings_differ, "jinja_code": _jinja_code_differs, "plain_lines": _plain_lines_differ,

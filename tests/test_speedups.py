@@ -48,6 +48,7 @@ def test_one_variable_turns_every_speed_up_off_or_some_by_name(monkeypatch):
     ("jinja2", "__version__", "4.0.0", {"strings", "jinja_code", "plain_lines"}),
     ("worker", "_sync_git_index_executable_bit", lambda self, path: None, {"git_file_mode"}),
     ("worker", "answers_relpath", "not a property", {"answers_file_name"}),
+    ("worker", "subproject", None, {"git_file_mode"}),
     ("environment", "compile", lambda self, source: None, {"jinja_code", "plain_lines"}),
     ("environment", "from_string", lambda self, source: None, {"strings"}),
     ("sys", "version_info", (3, 10, 0, "final", 0), {"dataclasses"}),
