@@ -43,7 +43,6 @@ import functools
 import hashlib
 import importlib.machinery
 import importlib.util
-import inspect
 import marshal
 import os
 import subprocess
@@ -66,27 +65,31 @@ PYTHONS = ((3, 11), (3, 12), (3, 13))  # dataclasses' own compiling, as checked 
 
 def status() -> dict[str, str]:
     """Each speed-up's state: "on", or "off: " and why (the switch, or what its guard found)."""
-    states = dict(_status(os.environ.get(SWITCH, "")))
-    if states["plain_lines"] == "on" and False in _plain_lines_fit.values():
-        states["plain_lines"] = "off: a probe line's code was not the stand-in's with the line in place"
-    return states
+    return {name: state(name) for name in NAMES}
 
 
 def on(name: str) -> bool:
-    return status()[name] == "on"
+    return state(name) == "on"
 
 
-@functools.lru_cache(maxsize=4)
-def _status(switch: str) -> tuple[tuple[str, str], ...]:
+def state(name: str) -> str:
+    """One speed-up's state, its guard asked only for it (the after-update step, which loads
+    the template's modules, must not import Copier to learn of a Copier speed-up)."""
+    found = _state(name, os.environ.get(SWITCH, ""))
+    if name == "plain_lines" and found == "on" and False in _plain_lines_fit.values():
+        return "off: a probe line's code was not the stand-in's with the line in place"
+    return found
+
+
+@functools.lru_cache(maxsize=64)
+def _state(name: str, switch: str) -> str:
     turned_off = {part.strip() for part in switch.split(",") if part.strip()}
-    everything = bool(turned_off & {"all", "1", "true", "yes"})
-    states = {}
-    for name in NAMES:
-        reason = f"{SWITCH}={switch}" if everything or name in turned_off else _GUARDS[name]()
-        if reason is None and name == "plain_lines" and states["jinja_code"] != "on":
-            reason = "it takes its stand-in's code from jinja_code, which is off"
-        states[name] = "on" if reason is None else f"off: {reason}"
-    return tuple(states.items())
+    if name in turned_off or turned_off & {"all", "1", "true", "yes"}:
+        return f"off: {SWITCH}={switch}"
+    if name == "plain_lines" and _state("jinja_code", switch) != "on":
+        return "off: it takes its stand-in's code from jinja_code, which is off"
+    reason = _GUARDS[name]()
+    return "on" if reason is None else f"off: {reason}"
 
 
 def _major(version: str) -> int | None:
@@ -108,6 +111,8 @@ def _jinja_differs() -> str | None:
 
 
 def _parameters(function) -> list[str] | None:
+    import inspect
+
     try:
         return list(inspect.signature(function).parameters)
     except (TypeError, ValueError):
@@ -163,6 +168,8 @@ def _dataclasses_differ(module: types.ModuleType | None = None) -> str | None:
 def _copier_worker_differs(method: str, parameters: list[str] | None, uses: tuple[str, ...]) -> str | None:
     """Whether Copier's Worker differs from the one the wrapper of `method` was written for: the
     method (or property) itself, and the members the wrapper reads (`uses`)."""
+    import inspect
+
     try:
         from copier._main import Worker
     except ImportError:

@@ -61,12 +61,12 @@ def test_a_library_that_differs_turns_its_speed_ups_off(monkeypatch, where, attr
     owner = {"copier": copier, "jinja2": jinja2, "worker": Worker, "environment": jinja2.Environment,
              "sys": sys}[where]
     monkeypatch.setattr(owner, attribute, value)
-    speedups._status.cache_clear()
+    speedups._state.cache_clear()
     try:
         states = speedups.status()
     finally:
         monkeypatch.undo()
-        speedups._status.cache_clear()
+        speedups._state.cache_clear()
     assert {name for name, state in states.items() if state != "on"} == turned_off, states
 
 
@@ -77,6 +77,16 @@ def test_dataclasses_that_compile_otherwise_turn_their_speed_up_off():
     exec("def _create_fn(name, args, body):\n    return compile(body, name, 'exec')\n", vars(without_exec))
     assert speedups._dataclasses_differ(without_exec) == "dataclasses does not call exec by name"
     assert speedups._dataclasses_differ() is None
+
+
+def test_the_template_modules_load_without_importing_copier(tmp_path):
+    # The after-update step and add_node load them; importing Copier would double their work.
+    script = f"import sys; sys.path.insert(0, {str(speedups.__file__.rsplit('/', 1)[0])!r}); import speedups\n" \
+             f"with speedups.template_modules(__import__('pathlib').Path({str(tmp_path)!r})): pass\n" \
+             "print(sorted(name for name in sys.modules if name.split('.')[0] in ('copier', 'jinja2')))"
+    result = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True,
+                            env={**subprocess_env(), "RNA_TEMPLATE_CACHE_DIR": str(tmp_path / "cache")})
+    assert result.stdout.strip() == "[]", result.stdout
 
 
 def test_turned_off_nothing_of_jinja_or_copier_is_replaced(template_folder, tmp_path, monkeypatch):

@@ -31,16 +31,32 @@ SETTINGS = ("", *speedups.NAMES, "all")  # "" = every speed-up on; a name = that
 
 
 def count(bench: benchmark.Bench, cases: list[benchmark.Case], settings: tuple[str, ...]) -> dict:
-    """{setting: {case: instructions}}."""
-    runs = [dataclasses.replace(case, name=f"{case.name}-{setting or 'on'}", samples=[],
-                                env={**case.env, speedups.SWITCH: setting})
+    """{setting: {case: instructions}}, each count printed as it comes (a long run can be cut short)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    runs = [(setting, dataclasses.replace(case, samples=[], env={**case.env, speedups.SWITCH: setting}))
             for setting in settings for case in cases]
-    benchmark.count_cases(runs, bench)
+    scratch = bench.work / "counted" if bench is not None else None
+
+    def one(index: int) -> tuple[str, str, int]:
+        setting, run = runs[index]
+        folder = scratch / f"{index}-{run.name}" if scratch is not None else None
+        return setting, run.name, _count_one(run, bench, folder)
+
     counts: dict[str, dict[str, int]] = {}
-    for run in runs:
-        name, _, setting = run.name.rpartition("-")
-        counts.setdefault("" if setting == "on" else setting, {})[name] = run.instructions
+    with ThreadPoolExecutor(max_workers=2) as pool:  # callgrind runs a process on one core
+        for setting, name, instructions in pool.map(one, range(len(runs))):
+            print(f"speedup_savings: {name} with {speedups.SWITCH}={setting!r}: {instructions:,}", file=sys.stderr,
+                  flush=True)
+            counts.setdefault(setting, {})[name] = instructions
     return counts
+
+
+def _count_one(run: benchmark.Case, bench: benchmark.Bench, folder: Path) -> int:
+    """One uncounted run of the case (its compiled code kept for the setting), then one counted."""
+    run.run(folder.with_name(f"{folder.name}-warm-up"), bench.env)
+    run.count(folder, bench.env)
+    return run.instructions
 
 
 def table(counts: dict, cases: tuple[str, ...]) -> str:
