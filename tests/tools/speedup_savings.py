@@ -84,7 +84,7 @@ def main(argv: list[str] | None = None) -> int:
         print("speedup_savings: valgrind is not installed (apt-get install valgrind)", file=sys.stderr)
         return 1
     names = tuple(arguments.cases or CASES)
-    settings = ("", *(arguments.only or SETTINGS[1:]))
+    settings = ("", *(arguments.only or ("all", *speedups.NAMES)))
     with tempfile.TemporaryDirectory(prefix="rna-savings-") as scratch:
         bench = benchmark.Bench(Path(scratch), arguments.template.resolve(), {"default", "scale", "update"})
         cases = [case for case in bench.cases() if case.name in names]
