@@ -1,15 +1,12 @@
-"""What Copier loads (copier.yml's `_jinja_extensions`): the template's Jinja filters and
-globals, and a context hook that checks the answers and adds `package`, their model, to
-every render.
+"""What copier.yml loads (`_jinja_extensions`): the template's Jinja filters and globals, and a
+context hook that checks the answers and adds `package`, their model, to every render.
 
-Copier loads this file by path through copier-template-extensions, afresh for each Jinja
-environment it makes (one per worker: a copy has one, an update four). The template's own
-code is the package `rna` next to this file, imported by its plain name; `copier update`
-renders the old and the new template version in one process, so modules of another
-checkout are dropped from sys.modules first and each version's glue keeps its own.
-What this template changes in Copier's, Jinja's and Python's behaviour to go faster is all
-in speedups.py (RNA_TEMPLATE_SPEEDUPS_OFF=all turns it off); copier_run.py keeps what one
-run has found (the answers file that was in the destination, the models made).
+Copier loads this file by path (copier-template-extensions), afresh for each Jinja
+environment (a copy makes one, an update four). The template's code is the package `rna`
+beside it, imported by its plain name; an update runs the old and the new template version
+in one process, so another checkout's modules are dropped from sys.modules first.
+Everything the template changes in Copier's, Jinja's and Python's behaviour to go faster
+is in speedups.py; copier_run.py keeps what one run found (the answers file, the models).
 """
 
 from __future__ import annotations
@@ -17,8 +14,6 @@ from __future__ import annotations
 import functools
 import getpass
 import json
-import os
-import re
 import sys
 import textwrap
 from collections.abc import Mapping
@@ -72,6 +67,7 @@ finally:
     sys.path.remove(str(_HERE))
 
 _run = copier_run.Run()  # what this worker found: the answers file before it, the models made
+absolute_source = copier_run.absolute_source  # a filter: the answers to record, the template's path absolute
 
 
 def _answers(context) -> rna.Answers:
@@ -240,6 +236,15 @@ def package_files() -> str:
     return "\n".join("/" + path for path in rna.layout.PACKAGE_FILES)
 
 
+@pass_context
+def porting_from_ros1(context) -> bool:
+    """Whether this update ports a ROS 1 package to ROS 2 (the build type then defaults to
+    ament_cmake, which holds C++ and Python nodes alike, as catkin did)."""
+    previous = _run.previous_answers(context)
+    return (previous is not None and rna.distros.generation(previous.get("ros_distro")) == 1
+            and rna.distros.generation(context.get("ros_distro")) == 2)
+
+
 def lab() -> dict:
     """The lab's choices (extensions/lab.yml), for defaults in copier.yml; a broken file is one line."""
     try:
@@ -254,28 +259,6 @@ def git_config(key: str) -> str:
 
 
 _git_user_settings = functools.cache(rna.git.user_settings)  # one git process a worker, for both defaults
-
-
-# A template source that is not a local path: a URL, Copier's gh:/gl: shortcuts, git's user@host:path.
-_REMOTE_SOURCE = re.compile(r"^([A-Za-z][\w+.-]*://|gh:|gl:|[^/:\s]+@[^/:\s]+:)")
-
-
-def absolute_source(answers: Mapping, cwd: str | None = None) -> dict:
-    """The answers to record, with a template given by a relative local path made absolute.
-
-    Copier records `_src_path` as typed, and `copier update` resolves it from wherever it
-    runs: `copier copy . ~/demo` would record `.`, which later names the project itself.
-    Copier renders in the directory it was started from (it does not chdir), so that is
-    where a relative path is resolved. URLs, shortcuts and absolute or `~` paths stay.
-    """
-    recorded = dict(answers)
-    source = recorded.get("_src_path")
-    if not isinstance(source, str) or _REMOTE_SOURCE.match(source) or source.startswith("~"):
-        return recorded
-    path = Path(cwd or os.getcwd(), source)
-    if not Path(source).is_absolute() and path.exists():
-        recorded["_src_path"] = os.path.normpath(path)
-    return recorded
 
 
 class RnaExtension(ContextHook):
@@ -293,8 +276,8 @@ class RnaExtension(ContextHook):
             default_description=default_description, default_nodes=default_nodes,
             nodes_dialog=nodes_dialog, nodes_dialog_pending=nodes_dialog_pending,
             existing_package=existing_package, found_interfaces=found_interfaces, git_config=git_config,
-            in_git_work_tree=rna.git.in_work_tree, lab=lab, docs_url=rna.lab.docs_url,
-            login_name=getpass.getuser, package_files=package_files,
+            porting_from_ros1=porting_from_ros1, in_git_work_tree=rna.git.in_work_tree, lab=lab,
+            docs_url=rna.lab.docs_url, login_name=getpass.getuser, package_files=package_files,
             python_init_file=python_init_file, user_files=user_files,
             # Line-breaking markers (rna/dialects/lines.py).
             br=rna.dialects.lines.BREAK, sbr=rna.dialects.lines.SPLIT, wrap=rna.dialects.lines.WRAP,
@@ -361,14 +344,21 @@ class RnaExtension(ContextHook):
 
 
 def _checked_package(context, previous: Mapping | None, answers: dict):
-    """The model of the answers, refused in one line when the answers or the destination break a rule."""
+    """The model of the answers, refused in one line when the answers or the destination break a rule:
+    a node added to a package must not land on its files, nor a node an update adds take over one of
+    the user's files of its name."""
     try:
         package = rna.build_package(answers)
     except rna.AnswerError as error:
         raise UserMessageError(f"rna-template: {error}") from None
-    _refuse_to_overwrite(package, context)
-    if previous is not None:
-        _refuse_to_take_over(package, previous, context)
+    destination = (context.get("_copier_conf") or {}).get("dst_path")
+    taken = _files_in_the_way(context, package.nodes[0].name, (package.nodes[0].language,)) \
+        if package.target == "node" else []
+    if taken:
+        raise UserMessageError(f"rna-template: invalid answer to 'nodes': {taken[0]} already exists in "
+                               f"{package.name}; choose another node name (nothing was written)")
+    if previous is not None and destination is not None:
+        _stop(rna.update.refusals.take_over_error(package, previous, Path(destination)))
     return package
 
 
@@ -382,7 +372,7 @@ def _check_given_answers(context) -> None:
     given = conf.get("data") or {}
     previous = _run.previous_answers(context) if "ros_distro" in given else None
     if previous is not None:  # before any other answer is read in the light of the new distro
-        _refuse_switch(previous, given)
+        _refuse_switch(previous, given, conf.get("dst_path"))
     if not given or not _run.given_answers_unchecked(given):
         return
     try:
@@ -391,28 +381,14 @@ def _check_given_answers(context) -> None:
         raise UserMessageError(f"rna-template: {error}") from None
 
 
-def _refuse_switch(previous: Mapping, answers: Mapping) -> None:
+def _refuse_switch(previous: Mapping, answers: Mapping, destination: object = None) -> None:
     refused = rna.update.refusals.switch_error(previous, answers)
+    if refused is None and destination is not None:
+        refused = rna.update.refusals.port_error(previous, answers, rna.workspace.read_package(Path(destination)))
+    _stop(refused)
+
+
+def _stop(refused) -> None:
+    """A refusal of the update's rules (rna/update/refusals.py), if any, as Copier's one-line error."""
     if refused is not None:
         raise UserMessageError(f"rna-template: {refused}")
-
-
-def _refuse_to_take_over(package, previous: Mapping, context) -> None:
-    """A node an update adds must not take over a source file of the user's own that has its name."""
-    destination = (context.get("_copier_conf") or {}).get("dst_path")
-    if destination is None:
-        return
-    refused = rna.update.refusals.take_over_error(package, previous, Path(destination))
-    if refused is not None:
-        raise UserMessageError(f"rna-template: {refused}")
-
-
-def _refuse_to_overwrite(package, context) -> None:
-    """A node added to an existing package must not land on files already there."""
-    if package.target != "node":
-        return
-    node = package.nodes[0]
-    taken = _files_in_the_way(context, node.name, (node.language,))
-    if taken:
-        raise UserMessageError(f"rna-template: invalid answer to 'nodes': {taken[0]} already exists in "
-                               f"{package.name}; choose another node name (nothing was written)")

@@ -14,7 +14,9 @@ from __future__ import annotations
 import atexit
 import functools
 import json
+import os
 import pickle
+import re
 import shutil
 import sys
 import tempfile
@@ -163,6 +165,28 @@ def _read_answers_file(path: str) -> tuple[str, object] | None:
         return text, yaml.safe_load(text)
     except yaml.YAMLError:
         return text, None
+
+
+# A template source that is not a local path: a URL, Copier's gh:/gl: shortcuts, git's user@host:path.
+_REMOTE_SOURCE = re.compile(r"^([A-Za-z][\w+.-]*://|gh:|gl:|[^/:\s]+@[^/:\s]+:)")
+
+
+def absolute_source(answers: Mapping, cwd: str | None = None) -> dict:
+    """The answers to record, with a template given by a relative local path made absolute.
+
+    Copier records `_src_path` as typed, and `copier update` resolves it from wherever it
+    runs: `copier copy . ~/demo` would record `.`, which later names the project itself.
+    Copier renders in the directory it was started from (it does not chdir), so that is
+    where a relative path is resolved. URLs, shortcuts and absolute or `~` paths stay.
+    """
+    recorded = dict(answers)
+    source = recorded.get("_src_path")
+    if not isinstance(source, str) or _REMOTE_SOURCE.match(source) or source.startswith("~"):
+        return recorded
+    path = Path(cwd or os.getcwd(), source)
+    if not Path(source).is_absolute() and path.exists():
+        recorded["_src_path"] = os.path.normpath(path)
+    return recorded
 
 
 @functools.cache
