@@ -7,12 +7,11 @@ non-interactive run.
 
 from __future__ import annotations
 
-import builtins
-import keyword
 import re
-import sys
 import unicodedata
 from collections import Counter
+
+from . import python_names
 
 CPP_KEYWORDS = frozenset(
     """
@@ -57,9 +56,7 @@ ROS2_DECLARED_PARAMETERS = frozenset({"use_sim_time", "start_type_description_se
 # Names a type cannot take: Python's keywords and built-in names (generated modules and
 # the nodes import types by name) and the C macros every C++ file sees.
 _C_MACROS = frozenset({"NULL", "EOF", "TRUE", "FALSE", "NAN", "INFINITY"})
-RESERVED_TYPE_NAMES = frozenset(
-    {name for name in dir(builtins) if name[:1].isupper()} | {"None", "True", "False"} | _C_MACROS
-)
+RESERVED_TYPE_NAMES = frozenset(python_names.CAPITALIZED_BUILTINS | {"None", "True", "False"} | _C_MACROS)
 
 # Names pycodestyle refuses as ambiguous, as they look like 1 and 0 (E741-E743).
 AMBIGUOUS_NAMES = frozenset({"l", "O", "I"})
@@ -86,7 +83,7 @@ def too_long(name: str, limit: int, what: str = "") -> str | None:
 
 def keyword_error(name: str) -> str | None:
     """Names that become modules, namespaces or fields cannot be language keywords."""
-    if keyword.iskeyword(name) or keyword.issoftkeyword(name):
+    if name in python_names.KEYWORDS or name in python_names.SOFT_KEYWORDS:
         return f"choose another name: '{name}' is a Python keyword"
     if name in CPP_KEYWORDS:
         return f"choose another name: '{name}' is a C++ keyword"
@@ -116,7 +113,7 @@ def generated_package_name_error(name: object) -> str | None:
     if name == "test":
         return ("choose another name: 'test' is left out of Python packages by setup.py's "
                 "find_packages(exclude=['test'])")
-    if name in sys.stdlib_module_names:
+    if name in python_names.STDLIB_MODULES:
         return (f"choose another name: '{name}' is a module of Python's standard library, which the package's "
                 "own module would shadow")
     return None

@@ -78,6 +78,17 @@ def copy_counted(instrumentation: str, template: Path, destination: Path, answer
     return json.loads(line.removeprefix("COUNTED "))
 
 
+def tree(root: Path) -> dict[str, tuple[bytes, bool]]:
+    """Every file under `root` (`.git` aside), by relative path: its bytes and whether it is executable."""
+    return {str(path.relative_to(root)): (path.read_bytes(), os.access(path, os.X_OK))
+            for path in sorted(root.rglob("*")) if path.is_file() and ".git" not in path.relative_to(root).parts}
+
+
+def differences(left: dict, right: dict) -> list[str]:
+    """The paths where two trees differ (a file only in one, other bytes, another executable bit)."""
+    return sorted(name for name in left.keys() | right.keys() if left.get(name) != right.get(name))
+
+
 def git(*args: str, cwd: Path, check: bool = True) -> subprocess.CompletedProcess:
     result = subprocess.run(["git", *args], cwd=cwd, env=subprocess_env(), capture_output=True, text=True)
     if check and result.returncode != 0:

@@ -8,13 +8,12 @@ from __future__ import annotations
 
 import math
 import re
-import sys
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 
 import yaml
 
-from .. import catalogue, distros, names
+from .. import catalogue, distros, names, python_names
 from .. import qos as qos_rules
 from ..interfaces import InterfaceType, normalised_type, parse_interface
 from ..model import AUTOSTART_PARAMETER, BASE_MEMBERS, DIAGNOSTICS_TASK, Action, Node, Service, Timer, Topic
@@ -339,7 +338,7 @@ def _check_script_name(node: Node) -> None:
     if node.ros != 1 or not node.is_python:
         return
     imported = {node.package, *node.dependencies}
-    if node.name in imported or node.name in sys.stdlib_module_names:
+    if node.name in imported or node.name in python_names.STDLIB_MODULES:
         raise ValueError(f"choose another name: its script {node.executable} would shadow the Python module "
                          f"'{node.name}' it needs")
 
