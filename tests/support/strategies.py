@@ -40,7 +40,7 @@ ALNUM = string.ascii_lowercase + string.digits
 ARRAY_MAX = 40
 
 # Rules that look at several answers at once: a set drawn as valid that breaks one is redrawn.
-CROSS_ANSWER_RULES = ("must agree on one type", "(give both the same qos preset)",
+CROSS_ANSWER_RULES = ("give its nodes one type", "(give both the same qos preset)",
                       "both use the name", "is the name of a package its nodes use", "would shadow the Python module",
                       "characters together: a C++ node's", "message generation already makes a type")
 

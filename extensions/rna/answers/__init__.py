@@ -41,8 +41,8 @@ QUICK_LISTS = {
     "node_parameters": "parameters",
 }
 
-# The first copy's ways to `nodes` (the answers file records `nodes` alone).
-FIRST_COPY = ("node_setup", "node_language", "node_name", *QUICK_LISTS)
+# The one-node questions: a first copy's way to `nodes`, which the answers file records instead.
+FIRST_COPY = ("node_language", "node_name", *QUICK_LISTS)
 
 # The demo: a talker and a listener on one topic.
 DEMO_NODES = [
@@ -251,11 +251,10 @@ class Answers:
             lab_files=() if read["target"] == "node" else tuple(lab_choices.files(self.lab)),
         )
 
-    @property
-    def default_description(self) -> str:
-        """What the nodes answered so far do, as the package's default description."""
+    def default_description(self, width: int | None = None) -> str:
+        """What the nodes answered so far do, as the package's default description, in `width` columns."""
         try:
-            return wording.describe_nodes(self.nodes)
+            return wording.describe_nodes(self.nodes, width)
         except ValueError:
             return "ROS nodes"
 
