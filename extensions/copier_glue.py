@@ -397,7 +397,8 @@ def _check_given_answers(context) -> None:
     given = conf.get("data") or {}
     previous = _run.previous_answers(context) if given else None
     if previous is not None:  # an update: before any other answer is read in the light of these
-        _refuse_switch(previous, given, conf.get("dst_path"))
+        if "ros_distro" in given:
+            _refuse_switch(previous, given, conf.get("dst_path"))
         _stop(rna.update.refusals.first_copy_error(given))
     if not given:
         return
