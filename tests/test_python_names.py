@@ -22,5 +22,5 @@ def test_the_lists_hold_the_running_pythons_own():
 
 def test_a_name_is_judged_the_same_under_every_python():
     assert names.keyword_error("type") is None  # a soft keyword from 3.12 on, a valid name in all
-    assert names.keyword_error("match") == "'match' is a Python keyword"
+    assert names.keyword_error("match") == "choose another name: 'match' is a Python keyword"
     assert "standard library" in names.generated_package_name_error("telnetlib")  # gone from 3.13's
