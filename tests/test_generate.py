@@ -268,6 +268,33 @@ def test_cpp_goals_end_before_ros_shuts_down(make_package, lifecycle):
         assert f"#include {header}" in base
 
 
+@pytest.mark.parametrize(("distro", "language", "throttled", "plain"), [
+    ("jazzy", "cpp", 'RCLCPP_INFO_THROTTLE(get_logger(), *get_clock(), 1000, "Received a message on image");',
+     'RCLCPP_INFO(get_logger(), "Received a message on odom");'),
+    ("jazzy", "python", "self.get_logger().info('Received a message on image', throttle_duration_sec=1.0)",
+     "self.get_logger().info('Received a message on odom')"),
+    ("noetic", "cpp", 'ROS_INFO_THROTTLE(1.0, "Received a message on image");',
+     'ROS_INFO("Received a message on odom");'),
+    ("noetic", "python", "rospy.loginfo_throttle(1.0, 'Received a message on image')",
+     "rospy.loginfo('Received a message on odom')")])
+def test_a_sensor_stream_is_logged_once_a_second(make_package, distro, language, throttled, plain):
+    """The private review ran camera_components: its viewer logged every 30 Hz image at INFO. A
+    subscription with the sensor_data QoS logs once a second (a relay of it publishes as often);
+    other subscriptions log each message, as ros2/examples' listener does."""
+    build_type = "catkin" if distro == "noetic" else "ament_cmake"
+    destination = make_package({"ros_distro": distro, "build_type": build_type, "nodes": [
+        {"name": "view", "language": language,
+         "subscribers": ["image:sensor_msgs/msg/Image:sensor_data", "odom:nav_msgs/msg/Odometry"]},
+        {"name": "relay", "language": language, "subscribers": ["image:sensor_msgs/msg/Image:sensor_data"],
+         "publishers": ["out:std_msgs/msg/String"]}]})
+    suffix = ".cpp" if language == "cpp" else ".py"
+    user = {path.stem: path.read_text() for path in destination.rglob(f"*{suffix}")
+            if path.stem in ("view", "relay")}
+    assert throttled in user["view"] and plain in user["view"]
+    assert "A sensor stream: logged once a second" in user["view"]
+    assert "Publishing: " in user["relay"] and user["relay"].count("THROTTLE" if language == "cpp" else "throttle") == 2
+
+
 def test_python_names_that_clash_are_imported_under_their_package(make_package):
     package = package_dir(make_package({"package_name": "poses", "build_type": "ament_python", "nodes": [
         {"name": "pose", "subscribers": ["a:geometry_msgs/msg/Pose", "b:turtlesim/msg/Pose"]}]}))
