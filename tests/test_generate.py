@@ -295,6 +295,24 @@ def test_a_sensor_stream_is_logged_once_a_second(make_package, distro, language,
     assert "Publishing: " in user["relay"] and user["relay"].count("THROTTLE" if language == "cpp" else "throttle") == 2
 
 
+@pytest.mark.parametrize("language", ["cpp", "python"])
+def test_rejected_goals_are_warned_once_a_second(make_package, language):
+    """The private review ran lifecycle_nodes: the monitor's 20 Hz starter sent a goal on every tick to
+    the driver, configured but inactive, and both warned of each rejection, 20 times a second."""
+    destination = make_package({"build_type": "ament_cmake", "nodes": [
+        {"name": "server", "language": language, "lifecycle": True, "action_servers": ["go:test_msgs/action/Fibonacci"]},
+        {"name": "client", "language": language, "action_clients": ["go:test_msgs/action/Fibonacci"], "timers": [0.05]}]})
+    suffix = "_base.hpp" if language == "cpp" else "_base.py"
+    server, client = (next(destination.rglob(f"{name}{suffix}")).read_text() for name in ("server", "client"))
+    if language == "cpp":
+        assert 'RCLCPP_WARN_THROTTLE(\n            get_logger(), *get_clock(), 1000, "go goal rejected: the node is not active");' in server
+        assert 'RCLCPP_WARN_THROTTLE(\n        get_logger(), *get_clock(), 1000, "The go goal was rejected");' in client
+    else:
+        assert "'go goal rejected: the node is not active', throttle_duration_sec=1.0)" in server
+        assert "'The go goal was rejected', throttle_duration_sec=1.0)" in client
+    assert "RCLCPP_WARN(" not in server + client and ".warning('" not in server + client
+
+
 def test_python_names_that_clash_are_imported_under_their_package(make_package):
     package = package_dir(make_package({"package_name": "poses", "build_type": "ament_python", "nodes": [
         {"name": "pose", "subscribers": ["a:geometry_msgs/msg/Pose", "b:turtlesim/msg/Pose"]}]}))
