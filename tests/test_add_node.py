@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import os
 import subprocess
 import sys
 from pathlib import Path
@@ -13,7 +12,7 @@ from catkin_pkg.package import parse_package
 from rna import build_package, integrate
 from support import existing_packages
 from copier_glue import answer_error
-from support.generation import FIXED_ANSWERS, add_node, generate
+from support.generation import FIXED_ANSWERS, add_node, copier_installed_by_pipx, generate
 
 COPIER = str(Path(sys.executable).with_name("copier"))
 
@@ -86,19 +85,54 @@ def test_build_file_edits_are_idempotent_blocks(tmp_path):
     assert integrate.package_xml(xml, grown)[0] == xml
 
 
-def test_catkin_components_are_added_to_find_package(tmp_path):
+def catkin_model(language: str = "cpp", **node) -> object:
+    return build_package({**FIXED_ANSWERS, "package_name": "hand_rover", "description": "d", "license": "MIT",
+                          "ros_distro": "noetic", "build_type": "catkin", "target": "node",
+                          "nodes": [{"name": "listener", "language": language, **node}]})
+
+
+def test_catkin_components_are_appended_to_the_users_own_call(tmp_path):
+    """The user's find_package(catkin ...) gains what the node needs at its end, in its own layout;
+    every other line stays as it was."""
     package = existing_packages.catkin(tmp_path / "pkg")
-    model = build_package({**FIXED_ANSWERS, "package_name": "hand_rover", "description": "d", "license": "MIT",
-                           "ros_distro": "noetic", "build_type": "catkin", "target": "node",
-                           "nodes": [{"name": "listener", "subscribers": ["odom:nav_msgs/msg/Odometry"]}]})
-    text, explained = integrate.catkin_cmake_lists((package / "CMakeLists.txt").read_text(), model)
-    assert "find_package(catkin REQUIRED COMPONENTS\n  nav_msgs\n  roscpp\n  std_msgs\n)" in text
+    model = catkin_model(subscribers=["odom:nav_msgs/msg/Odometry"])
+    cmake = (package / "CMakeLists.txt").read_text()
+    text, explained = integrate.catkin_cmake_lists(cmake, model)
+    assert "find_package(catkin REQUIRED COMPONENTS\n  roscpp\n  std_msgs\n  nav_msgs\n)" in text
     assert explained[0] == "CMakeLists.txt: find_package(catkin) also finds nav_msgs"
-    python = build_package({**FIXED_ANSWERS, "package_name": "hand_rover", "description": "d", "license": "MIT",
-                            "ros_distro": "noetic", "build_type": "catkin", "target": "node",
-                            "nodes": [{"name": "listener", "language": "python"}]})
-    with pytest.raises(ValueError, match="catkin_python_setup"):
-        integrate.catkin_cmake_lists(text, python)
+    assert set(cmake.splitlines()) <= set(text.splitlines())
+    comment = "## as in find_package(catkin REQUIRED COMPONENTS xyz)\n"
+    quoted = cmake.replace("find_package(catkin", comment + "find_package(catkin")
+    assert integrate.catkin_cmake_lists(quoted, model)[0] == text.replace("find_package(catkin",
+                                                                          comment + "find_package(catkin", 1)
+    for call, grown in (
+            ("find_package(catkin REQUIRED COMPONENTS roscpp std_msgs)",
+             "find_package(catkin REQUIRED COMPONENTS roscpp std_msgs nav_msgs)"),
+            ("find_package(catkin REQUIRED)", "find_package(catkin REQUIRED COMPONENTS nav_msgs roscpp)"),
+            ("find_package(catkin REQUIRED COMPONENTS\n\troscpp # the client\n)",
+             "find_package(catkin REQUIRED COMPONENTS\n\troscpp # the client\n\tnav_msgs\n)"),
+            ("find_package(catkin REQUIRED COMPONENTS\n  roscpp std_msgs)",
+             "find_package(catkin REQUIRED COMPONENTS\n  roscpp std_msgs nav_msgs)")):
+        text, _ = integrate.catkin_cmake_lists(cmake.replace("find_package(catkin REQUIRED COMPONENTS\n  roscpp\n"
+                                                             "  std_msgs\n)", call), model)
+        assert grown in text, text
+        assert integrate.catkin_cmake_lists(text, model)[0] == text
+
+
+def test_a_python_node_in_a_catkin_package_of_scripts_gets_catkin_python_setup_in_a_block(tmp_path):
+    package = existing_packages.catkin(tmp_path / "pkg")
+    cmake = (package / "CMakeLists.txt").read_text()
+    text, explained = integrate.catkin_cmake_lists(cmake, catkin_model("python"))
+    setup = text.index("# BEGIN rna-template: the nodes' Python package (setup.py)\ncatkin_python_setup()\n"
+                       "# END rna-template: the nodes' Python package\n")
+    assert text.index("find_package(catkin") < setup < text.index("catkin_package(")
+    assert "CMakeLists.txt: catkin_python_setup() installs the Python package of setup.py" in explained
+    assert integrate.catkin_cmake_lists(text, catkin_model("python"))[0] == text
+    with_setup = cmake.replace("catkin_package(", "catkin_python_setup()\n\ncatkin_package(")
+    assert "BEGIN rna-template: the nodes' Python" not in integrate.catkin_cmake_lists(with_setup,
+                                                                                      catkin_model("python"))[0]
+    with pytest.raises(ValueError, match="does not install the Python package hand_rover"):
+        integrate.catkin_setup_py("setup(packages=['other'], package_dir={'': 'src'})\n", catkin_model("python"))
 
 
 def test_a_node_never_lands_on_an_existing_file(template_dir, tmp_path):
@@ -110,19 +144,21 @@ def test_a_node_never_lands_on_an_existing_file(template_dir, tmp_path):
     result = subprocess.run([COPIER, "copy", "--trust", "--defaults", "--vcs-ref=HEAD", *data, str(template_dir),
                              str(package)], capture_output=True, text=True, stdin=subprocess.DEVNULL, timeout=120)
     assert result.returncode == 1
-    assert "config/listener.yaml already exists in hand_driver; choose another node name" in result.stderr
+    assert "choose another node name: config/listener.yaml already exists in hand_driver" in result.stderr
     assert "Traceback" not in result.stderr
     assert snapshot(package) == before
 
 
 def test_a_build_file_without_its_anchor_is_reported(template_dir, tmp_path):
     package = existing_packages.catkin(tmp_path / "pkg")
+    cmake = package / "CMakeLists.txt"
+    cmake.write_text(cmake.read_text().replace("find_package(catkin", "find_package(Boost"))
     result = subprocess.run([COPIER, "copy", "--trust", "--defaults", "--vcs-ref=HEAD", "--data=node_language=python",
                              "--data=node_name=watcher", str(template_dir), str(package)],
                             capture_output=True, text=True, stdin=subprocess.DEVNULL, timeout=120)
     assert result.returncode != 0
     assert "could not add the watcher node to CMakeLists.txt" in result.stderr
-    assert "catkin_python_setup" in result.stderr
+    assert "find_package(catkin REQUIRED COMPONENTS ...)" in result.stderr
 
 
 def test_a_destination_without_a_package_gets_a_package(template_dir, tmp_path):
@@ -179,16 +215,14 @@ def test_long_names_in_a_setup_py_fit_99_columns(tmp_path):
 
 
 def test_a_name_whose_files_are_there_is_refused_at_the_name_question(tmp_path):
-    """The clash is the node name prompt's own error (Copier's validator), wrapped to show whole."""
+    """The clash is the node name prompt's own error (Copier's validator), leading with the fix."""
     package = existing_packages.ament_cmake(tmp_path / "pkg")
     (package / "config").mkdir()
     (package / "config" / "listener.yaml").write_text("mine: 1\n")
     context = {"_copier_conf": {"dst_path": str(package), "data": {}}, "target": "node",
                "package_name": "hand_driver", "ros_distro": "jazzy", "build_type": "ament_cmake"}
     error = answer_error({**context, "node_name": "listener"}, "node_name")
-    lines = f"Validation error for question 'node_name': {error}".splitlines()
-    assert " ".join(lines).endswith("config/listener.yaml is already in the package: choose another name")
-    assert all(len(line) <= 79 for line in lines)
+    assert error == "choose another name: config/listener.yaml is already in the package"
     assert answer_error({**context, "node_name": "hearer"}, "node_name") == ""
 
 
@@ -199,7 +233,7 @@ def test_the_message_after_adding_a_node_keeps_to_80_columns(template_dir, tmp_p
     result = subprocess.run([COPIER, "copy", "--trust", "--defaults", "--vcs-ref=HEAD", "--data=copyright_year=2026",
                              f"--data=node_name={node}", str(template_dir), str(package)],
                             capture_output=True, text=True, stdin=subprocess.DEVNULL, timeout=120,
-                            env={**os.environ, "NO_COLOR": "1"})
+                            env={**copier_installed_by_pipx(), "NO_COLOR": "1"})
     assert result.returncode == 0, result.stderr
     message = result.stderr[result.stderr.index(f"The {node} node is added."):].splitlines()
     assert not [line for line in message if len(line) > 79], message

@@ -164,16 +164,27 @@ def test_real_conflicts_stay_marked():
     assert merge.merge3("a\nmine\nb\n", "a\nold\nb\n", "a\nb\n")[1]
 
 
-def test_a_switch_of_ros_generation_is_refused_with_what_to_do():
+def test_ros2_to_ros1_is_refused_in_one_line_and_ros1_to_ros2_is_a_port():
     ros2 = {"ros_distro": "jazzy", "build_type": "ament_cmake"}
-    error = refusals.switch_error({"ros_distro": "noetic"}, ros2)
+    error = refusals.switch_error(ros2, {"ros_distro": "noetic"})
     assert error is not None and error.question == "ros_distro"
-    assert "ROS 1" in str(error) and "ROS 2" in str(error) and "copier copy" in str(error)
+    assert "ROS 1" in str(error) and "ROS 2" in str(error) and "Keep ros_distro jazzy" in str(error)
     assert "nothing was written" in str(error) and "\n" not in str(error)
-    assert refusals.switch_error(ros2, {"ros_distro": "noetic"}).question == "ros_distro"
+    assert refusals.switch_error({"ros_distro": "noetic"}, ros2) is None  # a port (rna/update/port.py)
     assert refusals.switch_error(ros2, {**ros2, "ros_distro": "humble"}) is None  # another ROS 2 distro
     assert refusals.switch_error(ros2, {**ros2, "build_type": "ament_python"}) is None  # a conversion the update makes
     assert refusals.switch_error({}, ros2) is None and refusals.switch_error({"ros_distro": None}, ros2) is None
+
+
+def test_a_node_is_ported_only_once_the_package_around_it_is_ros2():
+    node = {"ros_distro": "noetic", "target": "node"}
+    error = refusals.port_error(node, {"ros_distro": "kilted"}, {"build_type": "catkin"})
+    assert error is not None and error.question == "ros_distro" and "\n" not in str(error)
+    assert "package.xml" in str(error) and "nothing was written" in str(error)
+    assert refusals.port_error(node, {"ros_distro": "kilted"}, {"build_type": "ament_cmake"}) is None
+    package = {**node, "target": "package"}
+    assert refusals.port_error(package, {"ros_distro": "kilted"}, {"build_type": "catkin"}) is None
+    assert refusals.port_error(node, {"ros_distro": "noetic"}, {"build_type": "catkin"}) is None
 
 
 ANSWERS_TEXT = ("# Written by Copier: change answers with `copier update`, never by hand (see README.md).\n"
@@ -412,3 +423,46 @@ def test_what_an_edited_user_file_must_follow_from_its_base_file():
     [executor] = drift.base_reasons(cpp, cpp_threaded, spun_itself, None, None)
     assert executor == "it spins on a multi-threaded executor now, which main() gets by calling Driver::spin()"
     assert drift.base_reasons(cpp, cpp_threaded, "robot::Driver::spin(node);", None, None) == []
+
+
+# Values of every parameter type, written as the template writes them (rna.configs.yaml_entry).
+PARAMETER_VALUES = st.one_of(
+    st.booleans(), st.integers(-(2**63), 2**63 - 1), st.floats(allow_nan=False), st.text(max_size=30),
+    st.lists(st.floats(allow_nan=False), max_size=30), st.lists(st.text(max_size=8), max_size=6),
+    st.lists(st.integers(-5, 5), max_size=40), st.lists(st.booleans(), max_size=3))
+COMMENTS = st.text(st.characters(exclude_categories=("Cc", "Cs", "Zl", "Zp")), max_size=20).map(
+    lambda text: "# " + text.strip())
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.dictionaries(st.from_regex(r"[a-z][a-z0-9_]{0,12}", fullmatch=True), st.tuples(PARAMETER_VALUES,
+                                                                                         PARAMETER_VALUES),
+                       min_size=1, max_size=4),
+       st.data(), st.booleans())
+def test_a_comment_on_a_line_survives_any_change_of_its_default(parameters, data, ros2):
+    """The user comments lines they did not tune (`frame_id: base_link  # must match the URDF`);
+    whatever the defaults become, each comment stays on its parameter's line."""
+    from rna.configs import yaml_entry
+
+    indent = "    " if ros2 else ""
+    head = "/**:\n  ros__parameters:\n" if ros2 else "# Parameters.\n"
+
+    def config(values: dict) -> str:
+        return head + "\n\n".join(yaml_entry(indent, name, value) for name, value in values.items()) + "\n"
+
+    old, new = ({name: pair[index] for name, pair in parameters.items()} for index in (0, 1))
+    commented = data.draw(st.dictionaries(st.sampled_from(sorted(parameters)), COMMENTS, min_size=1))
+    lines = config(old).split("\n")
+    for name, comment in commented.items():
+        key = next(index for index, line in enumerate(lines) if line.startswith(f"{indent}{name}:"))
+        end = key + 1
+        while end < len(lines) and lines[end].startswith(indent + "  "):  # a list over several lines
+            end += 1
+        lines[end - 1] += f"  {comment}"
+    mine = "\n".join(lines)
+    assert config_merge.parameters(mine) == old  # a comment is no value
+    merged = config_merge.merge(config(old), mine, config(new))
+    assert merged is not None and not merged.conflicts
+    assert config_merge.parameters(merged.text) == new
+    for name, comment in commented.items():
+        assert f"  {comment}" in merged.text, (name, comment, merged.text)

@@ -8,9 +8,7 @@ rules that look at several answers at once, the catalogue of standard types).
 
 from __future__ import annotations
 
-import keyword
-
-from . import distros, layout, names
+from . import distros, layout, names, python_names
 from . import qos as qos_rules
 from .answers import QUICK_LISTS
 from .definitions import SECTIONS
@@ -18,8 +16,10 @@ from .licenses import LICENSES
 from .model import CALLBACK_GROUP_TYPES, EXECUTORS
 from .parameters import SCALAR_TYPES, TYPE_ALIASES
 
-_KEYWORDS = sorted({*keyword.kwlist, *keyword.softkwlist, *names.CPP_KEYWORDS})
-_ROS_NAME = r"^(~/|/)?[A-Za-z_][A-Za-z0-9_]*(/[A-Za-z_][A-Za-z0-9_]*)*$"
+_KEYWORDS = sorted({*python_names.KEYWORDS, *python_names.SOFT_KEYWORDS, *names.CPP_KEYWORDS})
+# A part between '/' starts with a letter or '_'; ROS 2's {node} may stand in any part of it.
+_ROS_TOKEN = r"(?:[A-Za-z_]|\{node\})(?:[A-Za-z0-9_]|\{node\})*"
+_ROS_NAME = rf"^(~/|/)?{_ROS_TOKEN}(/{_ROS_TOKEN})*$"
 _TYPE = r"^([a-z](?:[a-z0-9]|_(?=[a-z0-9]))*/((msg|srv|action)/)?)?[A-Z][A-Za-z0-9]*$"
 
 

@@ -9,12 +9,11 @@ from __future__ import annotations
 
 import math
 import re
-import sys
 from collections import defaultdict
 from collections.abc import Iterable
 from functools import cached_property
 
-from .. import features, names
+from .. import features, names, python_names
 from .lines import NESTED_BREAK, NESTED_SPLIT, SPLIT, splittable
 
 # Names the generated Python files import or define besides interface types.
@@ -79,8 +78,31 @@ def literal(value: object, split: bool = False) -> str:
 
 
 def docstring_prefix(text: str) -> str:
-    """'r' for a docstring holding a backslash: pydocstyle (D301) wants it raw."""
-    return "r" if "\\" in text else ""
+    """'r' for a docstring holding a backslash, or three double quotes (docstring_text escapes
+    them with one): pydocstyle (D301) wants it raw."""
+    return "r" if "\\" in text or '"""' in text else ""
+
+
+def docstring_text(line: str) -> str:
+    """Free text for a docstring: no three double quotes in a row, which would end it, nor in
+    the text it reads as (pydocstyle then wants the docstring in single quotes, D300): every
+    third quote of a run is escaped, as in `""\\""\\""` for six (the raw docstring,
+    docstring_prefix, keeps the backslashes)."""
+    written, run = [], 0
+    for char in line:
+        if char == '"' and run == 2:
+            written.append('\\"')
+            run = 1
+        else:
+            written.append(char)
+            run = run + 1 if char == '"' else 0
+    return "".join(written)
+
+
+def fstring_text(text: str) -> str:
+    """Text for an f-string as it stands (a ROS 2 name's {node} would be an expression there),
+    cut where a long word may be (the braces written twice make it longer than the name)."""
+    return splittable((char, char * 2 if char in "{}" else char) for char in text)
 
 
 def text_literal(text: str, column: int, indent: int, width: int = 99) -> str:
@@ -152,10 +174,10 @@ def import_block(imports: Iterable[str]) -> str:
     statements += [(module, _from_import(module, sorted(names, key=_sort_key)))
                    for module, names in from_imports.items()]
     statements.sort(key=lambda item: (_sort_key(item[0]), item[1].startswith("from")))
-    stdlib = [line for module, line in statements if _top(module) in sys.stdlib_module_names]
+    stdlib = [line for module, line in statements if _top(module) in python_names.STDLIB_MODULES]
     groups: dict[str, list[str]] = defaultdict(list)
     for module, line in statements:
-        if _top(module) not in sys.stdlib_module_names:
+        if _top(module) not in python_names.STDLIB_MODULES:
             groups[_top(module)].append(line)
     blocks = ["\n".join(stdlib)] if stdlib else []
     blocks += ["\n".join(lines) for lines in groups.values()]
@@ -177,6 +199,8 @@ class PythonDialect:
 
     text_literal = staticmethod(text_literal)
     docstring_prefix = staticmethod(docstring_prefix)
+    docstring_text = staticmethod(docstring_text)
+    fstring_text = staticmethod(fstring_text)
 
     @cached_property
     def types(self) -> dict:
