@@ -133,6 +133,7 @@ BACK = "(empty: back)"  # a name left empty adds nothing
 # Keys of a node besides its endpoints and flags, changed through menu entries of their own.
 CALLBACK_KEYS = ("subscribers", "service_servers", "service_clients", "action_servers", "action_clients", "timers")
 ADD_NODE = "Add a node"
+BACK_TO_NODE = "Back"
 DONE = "Done"
 REMOVE = "Remove it"
 KEEP = "Keep it"
@@ -514,9 +515,8 @@ class Dialog:
                 shown = (value or NO_VALUE) if setting.choices else ("yes" if value else "no")
                 choices.append(fitting([f"{setting.label}: {shown}"], width))
                 actions.append(("setting", setting))
-            for label, action in self.threading_entries(node, width):
-                choices.append(label)
-                actions.append(action)
+            choices.append(fitting(self.running_forms(node), width))
+            actions.append(("running", None))
             choices.append(fitting([f"Done with {node['name']}", "Done with this node"], width))
             actions.append(("done", None))
             self.ask.say(f"Node {node_line(node)}")
@@ -536,13 +536,41 @@ class Dialog:
                 self._change(node, "language", self._language(str(node.get("language"))))
             elif action == "setting":
                 self._setting(node, what)
-            elif action == "executor":
+            elif action == "running":
+                self.edit_running(node)
+
+    def running_forms(self, node: Mapping) -> list[str]:
+        """The node menu's one entry for how the node runs: `Executor, callback groups, remappings: ...`."""
+        executor = node.get("executor") or DEFAULT_EXECUTOR
+        groups, remaps = len(node.get("callback_groups") or []), len(node.get("remappings") or {})
+        said = [executor + (f" ({node['threads']} threads)" if node.get("threads") else "")]
+        if groups:
+            said.append(f"{groups} group{'s' if groups > 1 else ''}")
+        if remaps:
+            said.append(f"{remaps} remap{'s' if remaps > 1 else ''}")
+        ros2 = self.rules.types.ros == 2
+        head, short = (("Executor, callback groups, remappings", "Executor, groups, remaps") if ros2
+                       else ("Executor, remappings", "Executor, remaps"))
+        return [f"{head}: {', '.join(said)}", f"{short}: {', '.join(said)}", f"{head}: {executor}",
+                f"{short}: {executor}", head]
+
+    def edit_running(self, node: dict) -> None:
+        """Its own menu: the executor, callback groups (ROS 2) and the launch file's remappings."""
+        while True:
+            width = choice_width()
+            entries = self.threading_entries(node, width)
+            choices = [label for label, _ in entries] + [BACK_TO_NODE]
+            picked = self.ask.select("Executor, callback groups and remappings", choices, default=BACK_TO_NODE)
+            if picked not in choices[:-1]:
+                return
+            action, what = entries[choices.index(picked)][1]
+            if action == "executor":
                 self.change_executor(node)
             elif action == "add_group":
                 self.add_callback_group(node)
             elif action == "add_remapping":
                 self.add_remapping(node)
-            elif action in ("remove_group", "remove_remapping"):
+            else:
                 self._remove(node, "callback_groups" if action == "remove_group" else "remappings", what)
 
     def threading_entries(self, node: Mapping, width: int) -> list[tuple[str, tuple]]:
