@@ -5,16 +5,17 @@
                                                       [--nice N] [--pair NAME=TALKER,LISTENER ...]
                                                       [--only-extra] [--inherit-env]
 
-A talker and a listener at --rate messages a second, per pair: the generated Python pair
-(the template's demo nodes, the talker's timer at the rate; its starter logs once a second at
-such a rate, made to log every message here, as ros2/examples' talker does and as the latency
-needs) and ros2/examples' minimal publisher and subscriber (tests/tools/reference_pair: its
-rclpy member-function nodes as its jazzy branch publishes them, written out again, the timer
-period set to the rate). For each, after --warmup seconds: the CPU time (user + system, from
-/proc, every thread) each process spends in --seconds, as a share of one core, and each message's latency, from the talker's
-`Publishing: ... N` log line to the listener's `I heard: ... N` (rcutils's own timestamps, one
-clock). CPU time of the process, not wall time, is what load from other processes moves least.
-The pairs run round after round in a rotated order; the table shows medians and the spread.
+A talker and a listener at --rate messages a second, per pair: the generated Python pair (the
+template's demo nodes, the talker's timer at the rate; its starter logs once a second at such a
+rate, made to log every message here, as ros2/examples' talker does and as the latency needs)
+and ros2/examples' minimal publisher and subscriber (tests/tools/reference_pair: its rclpy
+member-function nodes as its jazzy branch publishes them, written out again, the timer period
+set to the rate). For each, after --warmup seconds: the CPU time (user + system, from /proc,
+every thread) each process spends in --seconds, as a share of one core, and each message's
+latency, from the talker's `Publishing: ... N` log line to the listener's `I heard: ... N`
+(rcutils's own timestamps, one clock). CPU time of the process, not wall time, is what load from
+other processes moves least. The pairs run round after round in a rotated order; the table shows
+medians and the spread.
 
 --nice runs the nodes at that niceness (a negative one, as root, has them take their share of
 the cores first when other work loads the machine: their CPU time is what it is either way, but
