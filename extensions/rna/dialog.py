@@ -609,12 +609,7 @@ class Dialog:
             changed["executor"] = executor
         if threads:
             changed["threads"] = threads
-        error = self.rules.node_error(changed)
-        if error:
-            self.ask.say(error)
-            return
-        node.clear()
-        node.update(changed)
+        self._replace(node, changed)
 
     def add_callback_group(self, node: dict) -> None:
         """A name, a type, then the members: the node's endpoints with callbacks, comma-separated."""
@@ -674,7 +669,10 @@ class Dialog:
         changed = {**node, key: value}
         if key == "lifecycle" and value is False:
             changed.pop("autostart", None)  # only a lifecycle node is started that way
-        changed = {name: item for name, item in changed.items() if item is not False and item is not None}
+        self._replace(node, {name: item for name, item in changed.items() if item is not False and item is not None})
+
+    def _replace(self, node: dict, changed: dict) -> None:
+        """The node becomes `changed`, unless that breaks a rule: then say which, and keep it."""
         error = self.rules.node_error(changed)
         if error:
             self.ask.say(error)

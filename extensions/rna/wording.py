@@ -123,6 +123,11 @@ def describe_nodes(nodes, width: int | None = None) -> str:
     return next((form for form in forms if width is None or len(form) <= width), forms[-1])
 
 
+def threads_text(node) -> str:
+    """A multi-threaded executor's threads, in words."""
+    return f"{node.threads} threads" if node.threads else "as many threads as the machine has cores"
+
+
 _EXECUTORS = {"single_threaded": "a single-threaded executor", "multi_threaded": "a multi-threaded executor",
               "static": "a static single-threaded executor", "events": "an events executor"}
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from ..wording import threads_text
 from .cpp import _SCALARS, CppDialect
 
 
@@ -16,8 +17,7 @@ class Ros1Cpp(CppDialect):
         node = self.node
         if not node.multi_threaded:
             return "one thread (ros::spin())"
-        threads = f"{node.threads} threads" if node.threads else "as many threads as the machine has cores"
-        return f"a ros::MultiThreadedSpinner of {threads}"
+        return f"a ros::MultiThreadedSpinner of {threads_text(node)}"
 
     @staticmethod
     def header(interface) -> str:

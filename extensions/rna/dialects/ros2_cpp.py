@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from .. import names
+from ..wording import threads_text
 from .cpp import CppDialect, number
 from .lines import BREAK
 
@@ -66,8 +67,7 @@ class Ros2Cpp(CppDialect):
         """The executor, in words."""
         node = self.node
         if node.multi_threaded:
-            threads = f"{node.threads} threads" if node.threads else "as many threads as the machine has cores"
-            return f"a multi-threaded executor with {threads}"
+            return f"a multi-threaded executor with {threads_text(node)}"
         return {"single_threaded": "a single-threaded executor",
                 "static": "a static single-threaded executor (its entities fixed once it spins)",
                 "events": "rclcpp's experimental events executor"}[node.executor]

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from ..wording import threads_text
 from .lines import BREAK
 from .python import PythonDialect, import_block, literal
 
@@ -33,8 +34,7 @@ class Ros2Python(PythonDialect):
         node = self.node
         if not node.multi_threaded:
             return "a single-threaded executor, in the thread that calls run()"
-        threads = f"{node.threads} threads" if node.threads else "as many threads as the machine has cores"
-        return f"a multi-threaded executor with {threads}"
+        return f"a multi-threaded executor with {threads_text(node)}"
 
     def test_imports(self, discovery_off: bool) -> str:
         """Imports of the node's unit test (test/test_node_<node>.py); `discovery_off`: its
