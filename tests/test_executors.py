@@ -162,6 +162,11 @@ def test_cpp_main_calls_the_base_classs_spin_on_the_answers_executor(make_packag
         base = (package / "include" / "robot" / f"{name}_base.hpp").read_text()
         assert declaration in base, name
         assert "executor.add_node(node->get_node_base_interface());" in base
+        # rclcpp's handler goes back to SIG_IGN, not SIGINT's default, at rclcpp::shutdown(): a second
+        # SIGINT (ros2 launch's, after the terminal's) cannot end the process while the node is destroyed.
+        ignored = base.index("std::signal(SIGINT, SIG_IGN);")
+        assert base.index("rclcpp::uninstall_signal_handlers();") < ignored
+        assert ignored < base.index("rclcpp::install_signal_handlers(handling);") < base.index("executor.spin();")
         user = (package / "src" / f"{name}.cpp").read_text()
         assert f"  robot::{name.title()}::spin(node);\n  rclcpp::shutdown();" in user
         assert "Executor" not in user and "rclcpp::spin(" not in user
