@@ -64,6 +64,12 @@ def ported_body(body: str, method: str = "on_timer(self, event)") -> str:
     ("s = (now - then).to_sec()", "s = (now - then).nanoseconds / 1e9"),
     ("s = msg.header.stamp.to_sec()", "s = Time.from_msg(msg.header.stamp).nanoseconds / 1e9"),
     ("n = msg.header.stamp.secs", "n = msg.header.stamp.sec"),
+    ("age = (rospy.Time.now() - msg.header.stamp).to_sec()",
+     "age = (self.get_clock().now() - Time.from_msg(msg.header.stamp)).nanoseconds / 1e9"),
+    ("old = msg.header.stamp < self.last", "old = Time.from_msg(msg.header.stamp) < self.last"),
+    ("msg.header.stamp = rospy.Time.now() + rospy.Duration(0.5)",
+     "msg.header.stamp = (self.get_clock().now() + Duration(seconds=0.5)).to_msg()"),
+    ("out.header.stamp = msg.header.stamp", "out.header.stamp = msg.header.stamp"),
     ("rospy.sleep(0.5)", "time.sleep(0.5)"),
     ("rospy.sleep(rospy.Duration(2))", "time.sleep(2)"),
     ("rate = rospy.Rate(10)", "rate = self.create_rate(10)"),
@@ -263,6 +269,14 @@ def cpp_in_node(body: str) -> str:
     ("while (ros::ok()) {}", "while (rclcpp::ok()) {}"),
     ("double s = t.toSec();", "double s = t.seconds();"),
     ("double s = msg.header.stamp.toSec();", "double s = rclcpp::Time(msg.header.stamp).seconds();"),
+    ("double a = (ros::Time::now() - msg->header.stamp).toSec();",
+     "double a = (now() - rclcpp::Time(msg->header.stamp)).seconds();"),
+    ("bool old = msgs[0].header.stamp < last;", "bool old = rclcpp::Time(msgs[0].header.stamp) < last;"),
+    ("auto t = msg->header.stamp + ros::Duration(1.0);",
+     "auto t = rclcpp::Time(msg->header.stamp) + rclcpp::Duration::from_seconds(1.0);"),
+    ("uint32_t n = msg.header.stamp.nsec;", "uint32_t n = msg.header.stamp.nanosec;"),
+    ("msg.header.stamp = ros::Time::now();", "msg.header.stamp = now();"),
+    ("out->header.stamp = msg->header.stamp;", "out->header.stamp = msg->header.stamp;"),
     ("chatter_publisher_.publish(msg);", "chatter_publisher_->publish(msg);"),
     ("if (reset_client_.exists()) {}", "if (reset_client_->service_is_ready()) {}"),
     ("call_reset(Trigger::Request());", "call_reset(std::make_shared<Trigger::Request>());"),
@@ -292,6 +306,41 @@ def test_a_cpp_line_no_rule_rewrites_stays_marked(ros1, rule):
     assert f"    // TODO(port): {rules.rule(rule).ros2.split()[0]}" in ported.text and ros1 in ported.text
 
 
+def test_a_cpp_rewrite_longer_than_cpplints_lines_is_broken_as_uncrustify_wants():
+    body = ('    ROS_INFO("talker says %s after %.1f s at %.1f Hz", msg.data.c_str(), elapsed, rate_);\n'
+            '    ROS_INFO(\n      "mover got target at x=%.1f in %s (stamped %.3f, %.3f s ago), and more", msg->x);\n'
+            '    ROS_WARN("a message long enough to need cutting once it is ported, with more words than fit");\n'
+            '    ROS_INFO_STREAM("the rate is now, as the parameter says, in hertz: " << rate_ << " Hz");\n'
+            "    double r = std::max(rate_, 1.0) + std::min(rate_, 2.0) + rate_ + rate_ + std::abs(rate_);\n")
+    ported = cpp.port(cpp_in_node(body), CPP)
+    assert ported.text == cpp_in_node(
+        "    RCLCPP_INFO(\n"
+        '      get_logger(), "talker says %s after %.1f s at %.1f Hz", msg.data.c_str(), elapsed,\n'
+        '      get_parameter("rate").as_double());\n'
+        "    RCLCPP_INFO(\n"
+        "      get_logger(),\n"
+        '      "mover got target at x=%.1f in %s (stamped %.3f, %.3f s ago), and more", msg->x);\n'
+        "    RCLCPP_WARN(\n"
+        '      get_logger(), "a message long enough to need cutting once it is ported, with more words than "\n'
+        '      "fit");\n'
+        "    RCLCPP_INFO_STREAM(\n"
+        '      get_logger(), "the rate is now, as the parameter says, in hertz: " <<\n'
+        '        get_parameter("rate").as_double() << " Hz");\n'
+        # no call to break at (uncrustify breaks an expression otherwise): left as it is
+        '    double r = std::max(get_parameter("rate").as_double(), 1.0) + std::min(get_parameter("rate").as_double(), '
+        '2.0) + get_parameter("rate").as_double() + get_parameter("rate").as_double() + '
+        'std::abs(get_parameter("rate").as_double());\n'), ported.text
+    long = "    " + "x" * 100 + "();"
+    assert cpp.wrapped(long, {long}) == long  # as long before the port: the user's
+
+
+def test_each_line_is_listed_once_from_what_it_was_to_what_it_is():
+    ported = cpp.port(cpp_in_node('    ROS_INFO("at %f", ros::Time::now().toSec() * rate_);\n'), CPP)
+    assert [(r.rule, r.before, r.after) for r in ported.rewrites] == [
+        ("cpp.now, cpp.to_sec, cpp.api.parameter, cpp.log", 'ROS_INFO("at %f", ros::Time::now().toSec() * rate_);',
+         'RCLCPP_INFO(get_logger(), "at %f", now().seconds() * get_parameter("rate").as_double());')]
+
+
 def test_cpp_includes():
     text = cpp.port('#include "ros/ros.h"\n#include "std_msgs/String.h"\n#include "std_srvs/Trigger.h"\n'
                     '#include <actionlib/client/simple_action_client.h>\n#include <vector>\n', CPP).text
@@ -305,6 +354,8 @@ def cpp_files(draw) -> str:
         'ROS_INFO("n %d", count_);', 'ROS_WARN_STREAM("x " << x);', 'ROS_INFO_THROTTLE(1.0, "t");',
         "auto t = ros::Time::now();", "ros::Duration(0.1).sleep();", "if (!ros::ok()) { return; }",
         "chatter_publisher_.publish(msg);", "double r = rate_;", "ros::NodeHandle nh;", "int mine = 3;  // mine",
+        'ROS_INFO("a message of %s, long enough to need a break once ported: %.2f", name.c_str(), rate_);',
+        "double age = (ros::Time::now() - msg->header.stamp).toSec();",
         'std::string s = "ros::ok() in a string";', "// ros::spin() in a comment",
     ]), min_size=1, max_size=8))
     return cpp_in_node("".join(f"    {statement}\n" for statement in statements))
@@ -321,6 +372,7 @@ def test_drawn_cpp_is_ported_with_every_ros1_line_marked_and_the_rest_kept(text)
             assert "TODO(port)" in "\n".join(lines[max(0, index - 3):index]), f"unmarked: {lines[index]}"
     for mine in ("int mine = 3;  // mine", '"ros::ok() in a string"', "// ros::spin() in a comment"):
         assert mine not in text or mine in ported.text, ported.text
+    assert all(len(line) <= cpp.WIDTH for line in lines if line not in text.split("\n")), ported.text
     assert cpp.port(ported.text, CPP).text == ported.text, "a second port changed the file"
 
 

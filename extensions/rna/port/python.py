@@ -596,6 +596,8 @@ class _Rewriter:
             if self.qualified(node.operand.func) in ("rospy.is_shutdown", "rospy.core.is_shutdown",
                                                      "rospy.core.is_shutdown_requested"):
                 return self.rewrote(node, "py.is_shutdown", self._ok(node))
+        if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub)) and self._stamp(node):
+            return self._time_to_stamp(node)
         if isinstance(node, ast.Attribute):
             return self._attribute(node)
         if isinstance(node, ast.Name):
@@ -651,7 +653,21 @@ class _Rewriter:
         if node.attr in ("secs", "nsecs") and (_dotted(value) or "").split(".")[-1] == "stamp":
             new = {"secs": "sec", "nsecs": "nanosec"}[node.attr]
             return self.rewrote(node, "py.stamp_fields", f"{self.atom(value)}.{new}")
+        if node.attr == "stamp" and isinstance(node.ctx, ast.Load) and self._time_operand(node):
+            self.needed.add("rclpy.time:Time")
+            return self.rewrote(node, "py.stamp_time", f"Time.from_msg({self.atom(value)}.stamp)")
         return None
+
+    def _time_operand(self, node: ast.AST) -> bool:
+        """Whether `node` (a message's stamp) is an operand of time arithmetic or of a comparison:
+        a rospy.Time in ROS 1, a message in ROS 2, which rclpy's Time does not take."""
+        parent = self.parents.get(id(node))
+        if isinstance(parent, ast.BinOp):
+            return isinstance(parent.op, (ast.Add, ast.Sub))
+        if isinstance(parent, ast.Compare):
+            ordered = all(isinstance(op, (ast.Lt, ast.LtE, ast.Gt, ast.GtE, ast.Eq, ast.NotEq)) for op in parent.ops)
+            return ordered and not any(isinstance(side, ast.Constant) for side in (parent.left, *parent.comparators))
+        return False
 
     def _import(self, node: ast.Import | ast.ImportFrom) -> str | None:
         if isinstance(node, ast.Import):
@@ -923,7 +939,7 @@ class _Rewriter:
 
     # time
 
-    def _stamp(self, node: ast.Call) -> bool:
+    def _stamp(self, node: ast.AST) -> bool:
         """Whether the time this call makes fills a message's stamp (wants .to_msg())."""
         parent = self.parents.get(id(node))
         if isinstance(parent, ast.Assign) and parent.value is node:
@@ -931,6 +947,15 @@ class _Rewriter:
         if isinstance(parent, ast.keyword):
             return parent.arg == "stamp"
         return False
+
+    def _time_to_stamp(self, node: ast.BinOp) -> str | None:
+        """Time arithmetic that fills a message's stamp: an rclpy Time, which a stamp takes as a message."""
+        times = [inner for inner in ast.walk(node) if (isinstance(inner, ast.Call) and self.qualified(inner.func) in (
+            "rospy.Time.now", "rospy.get_rostime")) or (isinstance(inner, ast.Attribute) and inner.attr == "stamp")]
+        if not times:
+            return None
+        start, end = self.span(node)
+        return self.rewrote(node, "py.stamp_time", f"({self.splice(node, start, end)}).to_msg()")
 
     def _call_rospy_Time_now(self, node: ast.Call) -> str:
         after = f"{self.clock(node)}.now()" + (".to_msg()" if self._stamp(node) else "")
