@@ -467,6 +467,16 @@ def test_a_node_file_keeps_the_users_method_whole():
     assert not result.conflicted
 
 
+def test_a_starter_line_no_rule_ports_in_a_users_method_is_counted():
+    """The user's method is theirs whole, the ROS 1 starter's lines in it too: one no rule ports is an item."""
+    old = "import rospy\n\n\nclass T(TBase):\n    def on_timer(self, event):\n        rospy.starter_call()\n"
+    new = "import rclpy\n\n\nclass T(TBase):\n    def on_timer(self):\n        pass\n"
+    mine = old.replace("        rospy.starter_call()\n", "        rospy.starter_call()\n        c()\n")
+    result = code.port_python(mine, old, new, python.Context(base_class="TBase", callbacks=tuple(
+        (c.method.format(id="timer"), c) for c in api.PYTHON_CALLBACKS if c.endpoint == "timer")))
+    assert "# TODO(port)" in result.text and result.todos == 1, result.text
+
+
 # --- the one table
 
 def test_every_rule_a_rewriter_names_is_in_the_table():

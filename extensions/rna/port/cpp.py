@@ -571,9 +571,14 @@ class _Rewriter:
             body = self.goal_calls(body)
         if entry.method == "on_{id}_result":
             state = re.escape(names[0])
-            body = re.sub(rf"\b{state}\s*==\s*actionlib::SimpleClientGoalState::(\w+)",
-                          lambda m: (f"wrapped_result.code == rclcpp_action::ResultCode::{GOAL_STATES[m[1]]}"
-                                     if m[1] in GOAL_STATES else m[0]), body)
+            body = self.body_rule(body, line, rf"\b{state}\s*==\s*actionlib::SimpleClientGoalState::(\w+)",
+                                  lambda m: (f"wrapped_result.code == rclcpp_action::ResultCode::{GOAL_STATES[m[1]]}"
+                                             if m[1] in GOAL_STATES else m[0]), "cpp.goal_state")
+            spelled = self.body_rule(body, line, rf"\b{state}\s*\.\s*toString\s*\(\s*\)",
+                                     lambda m: "std::to_string(static_cast<int>(wrapped_result.code))", "cpp.goal_state")
+            if spelled != body:
+                body = spelled
+                self.needed.add("<string>")
             body = re.sub(rf"\n[ \t]*\(void\)\s*{re.escape(names[1])};[ \t]*(?=\n)", "", body)
         prologue = [line.format(*names) for index, line in enumerate(entry.prologue)
                     if line and re.search(rf"\b{re.escape(names[index])}\b", mask(body))]
@@ -582,6 +587,20 @@ class _Rewriter:
             prologue = [line for line in prologue if re.search(rf"\b{re.escape(names[0])}\b", mask(body))]
         if prologue:
             body = "".join(f"\n{indent}{line}" for line in prologue) + body
+        return body
+
+    def body_rule(self, body: str, line: int, pattern: str, replace, key: str) -> str:
+        """`body` (starting on `line`) with each match of `pattern` replaced, each line it changes recorded."""
+        for match in reversed(list(re.finditer(pattern, mask(body)))):
+            new = replace(re.match(pattern, body[match.start():]) or match)
+            if new == match[0]:
+                continue
+            start, end = body.rfind("\n", 0, match.start()) + 1, body.find("\n", match.end())
+            before = body[start:end]
+            body = body[:match.start()] + new + body[match.end():]
+            after = body[start:body.find("\n", match.start() + len(new))]
+            self.rewrites.append(Rewrite(line + body.count("\n", 0, match.start()), key, " ".join(before.split()),
+                                         " ".join(after.split())))
         return body
 
     def goal_calls(self, body: str) -> str:

@@ -132,6 +132,11 @@ CPP = (
          "its sleep() blocks: in a goal's thread, not in a callback"),
     Rule("cpp.ok", "C++", "ros::ok(), ros::isShuttingDown(), ros::shutdown()",
          "rclcpp::ok(), !rclcpp::ok(), rclcpp::shutdown()"),
+    Rule("cpp.goal_state", "C++", "state == actionlib::SimpleClientGoalState::SUCCEEDED, state.toString() "
+         "in an action client's result callback",
+         "wrapped_result.code == rclcpp_action::ResultCode::SUCCEEDED, "
+         "std::to_string(static_cast<int>(wrapped_result.code))",
+         "PREEMPTED and RECALLED are CANCELED; the result code is a number"),
     Rule("cpp.todo.main", "C++", "ros::init(), ros::spin(), ros::spinOnce()",
          "main() of the ROS 2 starter creates and spins the node", todo=True),
     Rule("cpp.todo.node_handle", "C++", "ros::NodeHandle",
