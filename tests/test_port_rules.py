@@ -457,12 +457,15 @@ def test_dependencies():
     assert dependencies.ros2_names("dynamic_reconfigure") is None
 
 
+TIMER_NODE = python.Context(base_class="TBase", callbacks=tuple(
+    (c.method.format(id="timer"), c) for c in api.PYTHON_CALLBACKS if c.endpoint == "timer"))
+
+
 def test_a_node_file_keeps_the_users_method_whole():
     old = "import rospy\n\n\nclass T(TBase):\n    def on_timer(self, event):\n        a()\n        b()\n"
     new = "import rclpy\n\n\nclass T(TBase):\n    def on_timer(self):\n        b()\n        a()\n"
     mine = old.replace("        a()\n        b()\n", "        c()\n")
-    result = code.port_python(mine, old, new, python.Context(base_class="TBase", callbacks=tuple(
-        (c.method.format(id="timer"), c) for c in api.PYTHON_CALLBACKS if c.endpoint == "timer")))
+    result = code.port_python(mine, old, new, TIMER_NODE)
     assert result.text == "import rclpy\n\n\nclass T(TBase):\n    def on_timer(self):\n        c()\n"
     assert not result.conflicted
 
@@ -472,8 +475,7 @@ def test_a_starter_line_no_rule_ports_in_a_users_method_is_counted():
     old = "import rospy\n\n\nclass T(TBase):\n    def on_timer(self, event):\n        rospy.starter_call()\n"
     new = "import rclpy\n\n\nclass T(TBase):\n    def on_timer(self):\n        pass\n"
     mine = old.replace("        rospy.starter_call()\n", "        rospy.starter_call()\n        c()\n")
-    result = code.port_python(mine, old, new, python.Context(base_class="TBase", callbacks=tuple(
-        (c.method.format(id="timer"), c) for c in api.PYTHON_CALLBACKS if c.endpoint == "timer")))
+    result = code.port_python(mine, old, new, TIMER_NODE)
     assert "# TODO(port)" in result.text and result.todos == 1, result.text
 
 
