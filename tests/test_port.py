@@ -213,7 +213,8 @@ def rover_with_user_lines(template, destination: Path) -> Path:
                  "  <!-- END rna-template: add your own nodes below -->\n"
                  '  <node pkg="rover" type="driver" name="spare_driver"/>\n'
                  '  <node pkg="rover" type="monitor.py" name="spare_monitor"/>\n')
-    replace_text(package / "src" / "driver.cpp", "    ++count_;\n", '    ++count_;\n    ROS_WARN("count %zu", count_);\n')
+    replace_text(package / "src" / "driver.cpp", "    ++count_;\n",
+                 '    ++count_;\n    ROS_WARN("count %zu", count_);\n')
     commit_all(project, "my lines")
     return project
 

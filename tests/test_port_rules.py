@@ -307,16 +307,15 @@ def test_a_cpp_line_no_rule_rewrites_stays_marked(ros1, rule):
 
 
 def test_a_cpp_rewrite_longer_than_cpplints_lines_is_broken_as_uncrustify_wants():
-    body = ('    ROS_INFO("talker says %s after %.1f s at %.1f Hz", msg.data.c_str(), elapsed, rate_);\n'
+    body = ('    ROS_INFO("talker says %s after %.1f s at %.1f Hz", msg.data.c_str(), elapsed, rate_hz);\n'
             '    ROS_INFO(\n      "mover got target at x=%.1f in %s (stamped %.3f, %.3f s ago), and more", msg->x);\n'
             '    ROS_WARN("a message long enough to need cutting once it is ported, with more words than fit");\n'
-            '    ROS_INFO_STREAM("the rate is now, as the parameter says, in hertz: " << rate_ << " Hz");\n'
-            "    double r = std::max(rate_, 1.0) + std::min(rate_, 2.0) + rate_ + rate_ + std::abs(rate_);\n")
+            '    ROS_INFO_STREAM("the rate is now, as the parameter says it is, in hertz, about: " << hz << " Hz");\n'
+            "    double r = std::max(ros::Time::now().toSec(), 1.0) + std::min(ros::Time::now().toSec(), 2.0);\n")
     ported = cpp.port(cpp_in_node(body), CPP)
     assert ported.text == cpp_in_node(
         "    RCLCPP_INFO(\n"
-        '      get_logger(), "talker says %s after %.1f s at %.1f Hz", msg.data.c_str(), elapsed,\n'
-        '      get_parameter("rate").as_double());\n'
+        '      get_logger(), "talker says %s after %.1f s at %.1f Hz", msg.data.c_str(), elapsed, rate_hz);\n'
         "    RCLCPP_INFO(\n"
         "      get_logger(),\n"
         '      "mover got target at x=%.1f in %s (stamped %.3f, %.3f s ago), and more", msg->x);\n'
@@ -324,21 +323,21 @@ def test_a_cpp_rewrite_longer_than_cpplints_lines_is_broken_as_uncrustify_wants(
         '      get_logger(), "a message long enough to need cutting once it is ported, with more words than "\n'
         '      "fit");\n'
         "    RCLCPP_INFO_STREAM(\n"
-        '      get_logger(), "the rate is now, as the parameter says, in hertz: " <<\n'
-        '        get_parameter("rate").as_double() << " Hz");\n'
-        # no call to break at (uncrustify breaks an expression otherwise): left as it is
-        '    double r = std::max(get_parameter("rate").as_double(), 1.0) + std::min(get_parameter("rate").as_double(), '
-        '2.0) + get_parameter("rate").as_double() + get_parameter("rate").as_double() + '
-        'std::abs(get_parameter("rate").as_double());\n'), ported.text
+        '      get_logger(), "the rate is now, as the parameter says it is, in hertz, about: " << hz <<\n'
+        '        " Hz");\n'
+        "    double r = std::max(now().seconds(), 1.0) + std::min(now().seconds(), 2.0);\n"), ported.text
     long = "    " + "x" * 100 + "();"
     assert cpp.wrapped(long, {long}) == long  # as long before the port: the user's
+    sum_of_calls = "    double r = std::max(" + "a" * 50 + ", 1.0) + std::min(" + "b" * 50 + ", 2.0);"
+    # no call the statement ends with (uncrustify breaks an expression otherwise): left as it is
+    assert cpp.wrapped(sum_of_calls, set()) == sum_of_calls
 
 
 def test_each_line_is_listed_once_from_what_it_was_to_what_it_is():
-    ported = cpp.port(cpp_in_node('    ROS_INFO("at %f", ros::Time::now().toSec() * rate_);\n'), CPP)
+    ported = cpp.port(cpp_in_node('    ROS_INFO("at %f", ros::Time::now().toSec());\n'), CPP)
     assert [(r.rule, r.before, r.after) for r in ported.rewrites] == [
-        ("cpp.now, cpp.to_sec, cpp.api.parameter, cpp.log", 'ROS_INFO("at %f", ros::Time::now().toSec() * rate_);',
-         'RCLCPP_INFO(get_logger(), "at %f", now().seconds() * get_parameter("rate").as_double());')]
+        ("cpp.now, cpp.to_sec, cpp.log", 'ROS_INFO("at %f", ros::Time::now().toSec());',
+         'RCLCPP_INFO(get_logger(), "at %f", now().seconds());')]
 
 
 def test_cpp_includes():

@@ -574,8 +574,9 @@ class _Rewriter:
             body = self.body_rule(body, line, rf"\b{state}\s*==\s*actionlib::SimpleClientGoalState::(\w+)",
                                   lambda m: (f"wrapped_result.code == rclcpp_action::ResultCode::{GOAL_STATES[m[1]]}"
                                              if m[1] in GOAL_STATES else m[0]), "cpp.goal_state")
-            spelled = self.body_rule(body, line, rf"\b{state}\s*\.\s*toString\s*\(\s*\)",
-                                     lambda m: "std::to_string(static_cast<int>(wrapped_result.code))", "cpp.goal_state")
+            code = "std::to_string(static_cast<int>(wrapped_result.code))"
+            spelled = self.body_rule(body, line, rf"\b{state}\s*\.\s*toString\s*\(\s*\)", lambda m: code,
+                                     "cpp.goal_state")
             if spelled != body:
                 body = spelled
                 self.needed.add("<string>")
