@@ -178,6 +178,15 @@ def test_a_rewrite_longer_than_flake8s_lines_is_broken_as_ros2_code_is():
     assert python.wrapped(long, {long}) == long  # as long before the port: the user's
     unbreakable = "        x = " + "y" * 95
     assert python.wrapped(unbreakable, set()) == unbreakable
+    # no call: after its first bracket that holds something; a block's header 8 deeper (flake8 E125)
+    stamp = "        age_of_the_target = (self.get_clock().now() - Time.from_msg(msg.header.stamp)).nanoseconds / 1e9"
+    assert python.wrapped(stamp, set()).split("\n") == [
+        "        age_of_the_target = (",
+        "            self.get_clock().now() - Time.from_msg(msg.header.stamp)).nanoseconds / 1e9"]
+    header = "        while self.context.ok() and Time.from_msg(msg.header.stamp) < self.last_stamp_of_the_targets:"
+    assert python.wrapped(header, set()).split("\n") == [
+        "        while self.context.ok() and Time.from_msg(",
+        "                msg.header.stamp) < self.last_stamp_of_the_targets:"]
 
 
 def test_a_file_that_is_not_python_is_marked_at_its_top():

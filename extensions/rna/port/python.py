@@ -16,8 +16,10 @@ logging goes to a named logger.
 from __future__ import annotations
 
 import ast
+import io
 import re
 import textwrap
+import tokenize
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
@@ -121,12 +123,12 @@ def _broken(line: str) -> list[str] | None:
     try:
         statement = ast.parse(line.strip()).body
     except SyntaxError:
-        return None
+        return _after_bracket(line, indent)  # a compound statement's first line (if ...:)
     if len(statement) != 1 or not isinstance(statement[0], (ast.Expr, ast.Assign)):
-        return None
+        return _after_bracket(line, indent)
     call = statement[0].value
     if not isinstance(call, ast.Call) or not (call.args or call.keywords) or call.end_col_offset != len(line.strip()):
-        return None
+        return _after_bracket(line, indent)
     code = line.strip()
     opening = call.func.end_col_offset
     if code[opening] != "(":
@@ -152,6 +154,34 @@ def _broken(line: str) -> list[str] | None:
     except SyntaxError:
         return None
     return result
+
+
+def _after_bracket(line: str, indent: str) -> list[str] | None:
+    """A statement that is no call broken after its first bracket (a hanging indent), if that makes it fit:
+    `age = (\n    now - Time.from_msg(stamp)).nanoseconds / 1e9`."""
+    code = line.strip()
+    try:
+        tokens = list(tokenize.generate_tokens(io.StringIO(code).readline))
+        if code.endswith(":"):
+            ast.parse(code + "\n    pass")
+        else:
+            ast.parse(code)
+    except (tokenize.TokenError, SyntaxError):
+        return None
+    opening = next((token for token, following in zip(tokens, tokens[1:], strict=False)
+                    if token.type == tokenize.OP and token.string in "([" and following.string not in ")]"), None)
+    if opening is None or opening.start[0] != 1:
+        return None
+    column = opening.end[1]
+    header = code.endswith(":")  # its block follows at 4 more: the continuation goes 8 deeper (E125)
+    lines = [indent + code[:column], indent + " " * (8 if header else 4) + code[column:].lstrip()]
+    if any(len(piece) > WIDTH for piece in lines) or not code[column:].strip():
+        return None
+    try:
+        ast.parse("\n".join(piece.strip() for piece in lines) + ("\n    pass" if header else ""))
+    except SyntaxError:
+        return None
+    return lines
 
 
 def _cut_literal(literal: str, room: int) -> list[str] | None:
