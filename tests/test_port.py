@@ -258,3 +258,14 @@ def test_a_ported_node_file_in_conflict_is_left_as_the_conflict_option_says(curr
         assert "<<<<<<< before updating" in code and "rclcpp::spin(node);" in code and not rejected.exists(), code
     assert "each TODO(port) is an item for you" in result.stdout, result
     assert "review with `git add -A . && git diff --staged -M HEAD`" in " ".join(result.stdout.split()), result
+
+
+def test_a_port_that_renames_the_package_is_refused_in_one_line(current_template, tmp_path):
+    """The package moves in an update of its own: with the port, the user's own files would stay behind."""
+    project = rover_with_user_lines(current_template, tmp_path / "rover")
+    head = git("rev-parse", "HEAD", cwd=project).stdout
+
+    result = run_update(project, {"ros_distro": PORT_TO, "package_name": "rover2"}, vcs_ref="HEAD")
+
+    refusal = refused_in_one_line(result, project, head)
+    assert "'package_name'" in refusal and "in an update of its own" in refusal, refusal
