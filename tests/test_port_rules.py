@@ -217,6 +217,7 @@ def ros1_statement(draw) -> str:
         f"rospy.sleep({draw(NUMBERS)})", f"s = {draw(NAMES)}.to_sec()", "if rospy.is_shutdown():\n    return",
         "v = rospy.get_param('~rate', 1.0)", "rospy.set_param('x', 1)", f"y = {draw(NAMES)} + 1",
         "rate = rospy.Rate(5)", "print(msg.header.seq)", "rospy.some_call()", "rospy.spin()",
+        "age_of_the_last_target_seen = (rospy.Time.now() - msg.header.stamp).to_sec()",
     ]))
 
 
