@@ -164,29 +164,33 @@ def test_code_outside_the_node_logs_to_a_named_logger_and_imports_what_it_uses()
                     "def warn(x):\n    get_logger('robot').warning(f'x={x}')\n    return Clock().now()\n")
 
 
-def test_a_rewrite_longer_than_flake8s_lines_is_broken_as_ros2_code_is():
-    long = ("        self.get_logger().info(f\"talker says {msg.data} after {elapsed:.1f} s at "
+LONG_LOG = ("        self.get_logger().info(f\"talker says {msg.data} after {elapsed:.1f} s at "
             "{self.get_parameter('rate').value} Hz\")")
-    assert python.wrapped(long, set()).split("\n") == [
-        "        self.get_logger().info(",
-        "            f\"talker says {msg.data} after {elapsed:.1f} s at {self.get_parameter('rate').value} \"",
-        "            'Hz')"]
-    shorter = "        self.get_logger().info(f'mover got target at x={msg.x:.1f} in {msg.header.frame_id} (stamped)')"
-    assert python.wrapped(shorter, set()).split("\n") == [
-        "        self.get_logger().info(",
-        "            f'mover got target at x={msg.x:.1f} in {msg.header.frame_id} (stamped)')"]
-    assert python.wrapped(long, {long}) == long  # as long before the port: the user's
+
+
+@pytest.mark.parametrize(("line", "broken"), [
+    (LONG_LOG, ["        self.get_logger().info(",
+                "            f\"talker says {msg.data} after {elapsed:.1f} s at {self.get_parameter('rate').value} \"",
+                "            'Hz')"]),
+    ("        self.get_logger().info(f'mover got target at x={msg.x:.1f} in {msg.header.frame_id} (stamped)')",
+     ["        self.get_logger().info(",
+      "            f'mover got target at x={msg.x:.1f} in {msg.header.frame_id} (stamped)')"]),
+    # no call: after its first bracket that holds something; a block's header 8 deeper (flake8 E125)
+    ("        age_of_the_target = (self.get_clock().now() - Time.from_msg(msg.header.stamp)).nanoseconds / 1e9",
+     ["        age_of_the_target = (",
+      "            self.get_clock().now() - Time.from_msg(msg.header.stamp)).nanoseconds / 1e9"]),
+    ("        while self.context.ok() and Time.from_msg(msg.header.stamp) < self.last_stamp_of_the_targets:",
+     ["        while self.context.ok() and Time.from_msg(",
+      "                msg.header.stamp) < self.last_stamp_of_the_targets:"]),
+])
+def test_a_rewrite_longer_than_flake8s_lines_is_broken_as_ros2_code_is(line, broken):
+    assert python.wrapped(line, set()).split("\n") == broken
+
+
+def test_a_long_line_stays_when_it_was_the_users_or_has_no_place_to_break():
+    assert python.wrapped(LONG_LOG, {LONG_LOG}) == LONG_LOG  # as long before the port: the user's
     unbreakable = "        x = " + "y" * 95
     assert python.wrapped(unbreakable, set()) == unbreakable
-    # no call: after its first bracket that holds something; a block's header 8 deeper (flake8 E125)
-    stamp = "        age_of_the_target = (self.get_clock().now() - Time.from_msg(msg.header.stamp)).nanoseconds / 1e9"
-    assert python.wrapped(stamp, set()).split("\n") == [
-        "        age_of_the_target = (",
-        "            self.get_clock().now() - Time.from_msg(msg.header.stamp)).nanoseconds / 1e9"]
-    header = "        while self.context.ok() and Time.from_msg(msg.header.stamp) < self.last_stamp_of_the_targets:"
-    assert python.wrapped(header, set()).split("\n") == [
-        "        while self.context.ok() and Time.from_msg(",
-        "                msg.header.stamp) < self.last_stamp_of_the_targets:"]
 
 
 def test_a_file_that_is_not_python_is_marked_at_its_top():
