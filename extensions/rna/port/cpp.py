@@ -40,7 +40,8 @@ GOAL_STATES = {"SUCCEEDED": "SUCCEEDED", "ABORTED": "ABORTED", "PREEMPTED": "CAN
 TODO_CALLS = {
     "ros::init": "cpp.todo.main", "ros::spin": "cpp.todo.main", "ros::spinOnce": "cpp.todo.main",
     "ros::NodeHandle": "cpp.todo.node_handle", "ros::param::get": "cpp.todo.param",
-    "ros::param::set": "cpp.todo.param", "ros::param::has": "cpp.todo.param",
+    "ros::param::set": "cpp.todo.global_param", "ros::param::has": "cpp.todo.global_param",
+    "ros::param::del": "cpp.todo.global_param",
     "ros::ServiceClient": "cpp.todo.service_call", "ros::service::call": "cpp.todo.service_call",
     "ros::service::waitForService": "cpp.todo.service_call", "ros::topic::waitForMessage": "cpp.todo.other",
 }
@@ -348,8 +349,10 @@ class _Rewriter:
                 if end > 0:
                     yield match, opening, end
 
+        # `ros::Time now = ros::Time::now();`: there `now()` would call the variable, this->now() the node's
+        node_now = "this->now()" if re.search(r"[\w>&*]\s+now\s*[=;{(,)]", masked) else "now()"
         for match in re.finditer(r"\bros::Time::now\s*\(\s*\)", masked):
-            edits.append(_Edit(match.start(), match.end(), "now()" if self.in_class(match.start())
+            edits.append(_Edit(match.start(), match.end(), node_now if self.in_class(match.start())
                                else "rclcpp::Clock().now()", "cpp.now"))
         for match, opening, end in call(r"\bros::Duration\s*\("):
             args = arguments(masked, opening, end)

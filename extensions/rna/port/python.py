@@ -650,6 +650,8 @@ class _Rewriter:
         return "rclpy.ok()"
 
     def _name(self, node: ast.Name) -> str | None:
+        if isinstance(node.ctx, ast.Load) and self._stamp(node) and self._holds_time(node):
+            return self.rewrote(node, "py.stamp_time", f"{node.id}.to_msg()")
         if node.id in self.types and isinstance(node.ctx, ast.Load):
             spelled = self.types[node.id]
             key = "py.srv_types" if spelled.endswith(SERVICE_PARTS) else "py.action_types"
@@ -976,6 +978,19 @@ class _Rewriter:
             return any((_dotted(target) or "").split(".")[-1] == "stamp" for target in parent.targets)
         if isinstance(parent, ast.keyword):
             return parent.arg == "stamp"
+        return False
+
+    def _holds_time(self, node: ast.Name) -> bool:
+        """Whether the function `node` is in assigns its name a rospy time (now(), a Time, their sums)."""
+        function = self.function(node)
+        for inner in ast.walk(function) if function is not None else ():
+            if isinstance(inner, ast.Assign) and any(isinstance(target, ast.Name) and target.id == node.id
+                                                     for target in inner.targets):
+                made = [call for call in ast.walk(inner.value) if isinstance(call, ast.Call)
+                        and self.qualified(call.func) in ("rospy.Time.now", "rospy.get_rostime", "rospy.Time",
+                                                          "rospy.Time.from_sec")]
+                if made:
+                    return True
         return False
 
     def _time_to_stamp(self, node: ast.BinOp) -> str | None:
