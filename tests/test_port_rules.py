@@ -359,6 +359,20 @@ def test_each_line_is_listed_once_from_what_it_was_to_what_it_is():
          'RCLCPP_INFO(get_logger(), "at %f", now().seconds());')]
 
 
+def test_a_statement_over_several_lines_is_marked_above_its_first_line():
+    """Marked inside its call's arguments, a port of the ported file would mark it again once the call is
+    broken (found on ros_tutorials' turtlesim: a port of a ported file changed it)."""
+    body = ("    ros::Timer timer = nh.createTimer(ros::Duration(0.016), boost::bind(&Talker::tick, this, "
+            "boost::placeholders::_1));\n")
+    ported = cpp.port(cpp_in_node(body), CPP)
+    assert ported.text == cpp_in_node(
+        "    // TODO(port): write it with rclcpp\n"
+        "    ros::Timer timer = nh.createTimer(\n"
+        "      rclcpp::Duration::from_seconds(0.016),\n"
+        "      boost::bind(&Talker::tick, this, boost::placeholders::_1));\n"), ported.text
+    assert cpp.port(ported.text, CPP).text == ported.text
+
+
 def test_cpp_includes():
     text = cpp.port('#include "ros/ros.h"\n#include "std_msgs/String.h"\n#include "std_srvs/Trigger.h"\n'
                     '#include <actionlib/client/simple_action_client.h>\n#include <vector>\n', CPP).text

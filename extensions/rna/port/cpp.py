@@ -128,6 +128,11 @@ def closing(masked: str, opening: int) -> int:
     return -1
 
 
+def open_brackets(masked: str) -> int:
+    """How many round and square brackets `masked` (comments and literals blanked) leaves open."""
+    return masked.count("(") + masked.count("[") - masked.count(")") - masked.count("]")
+
+
 def arguments(masked: str, opening: int, end: int) -> list[tuple[int, int]]:
     """(start, end) of each top-level argument between the brackets at `opening` and `end`."""
     spans, depth, start = [], 0, opening + 1
@@ -206,7 +211,14 @@ class _Rewriter:
                                              " ".join(after[line - 1].split())))
 
     def todo(self, index: int, key: str) -> None:
-        keys = self.todos.setdefault(self.line_of(index), [])
+        """Mark the statement at `index`: its TODO(port) goes above its first line (one inside a call's
+        arguments would be a place a port of the ported file marks again once the call is broken)."""
+        masked = self.masked
+        starts = [0] + [position + 1 for position, char in enumerate(masked) if char == "\n"]
+        line = self.line_of(index)
+        while line > 1 and open_brackets(masked[:starts[line - 1]]) > 0:
+            line -= 1
+        keys = self.todos.setdefault(line, [])
         if key not in keys and not (key == "cpp.todo.other" and keys):
             keys.append(key)
 
@@ -728,10 +740,10 @@ def wrapped(text: str, unchanged: set[str]) -> str:
     breaks ROS 2 code (rna.dialects.lines): after the call's opening bracket, then as many of its
     arguments a line as fit, a long string argument cut after its spaces. A line as long before the
     port is the user's, and one that cannot be broken so (a comment on it, no call) stays as it is."""
-    out, depth = [], 0
+    out, level = [], 0
     for line, masked in zip(text.split("\n"), mask(text).split("\n"), strict=True):
-        inside = depth > 0
-        depth = max(breaking._depth(masked, depth), 0)
+        inside = level > 0
+        level = max(level + open_brackets(masked), 0)
         if breaking.columns(line, "cpp") <= WIDTH or line in unchanged or masked.lstrip().startswith("#"):
             out.append(line)
             continue
@@ -750,7 +762,7 @@ def _marked(line: str, masked: str, inside: bool) -> str | None:
     if not inside:
         # the call the statement ends with (a condition's || and && uncrustify breaks otherwise)
         call = re.search(r"(?:\b(?!(?:if|while|for|switch|return)\b)\w+|>)\s*\(", masked)
-        if call is None or breaking._depth(masked[:call.end() - 1]) != 0:
+        if call is None or open_brackets(masked[:call.end() - 1]) != 0:
             return None
         end = closing(masked, call.end() - 1)
         if end < 0 or not re.fullmatch(r"\s*(;|\{|\)\s*;)?\s*", masked[end + 1:]):
@@ -772,7 +784,7 @@ def _marked(line: str, masked: str, inside: bool) -> str | None:
             breaks.append(index + 3)
     for literal in _STRING.finditer(line):
         whole = re.search(r"[(,]\s*$", line[:literal.start()]) and re.match(r"\s*[,)]", line[literal.end():])
-        if whole and breaking._depth(masked[:literal.start()]) == level and (inside or literal.start() >= call.end()):
+        if whole and open_brackets(masked[:literal.start()]) == level and (inside or literal.start() >= call.end()):
             splits += [index + 1 for index in range(literal.start() + 1, literal.end() - 2) if line[index] == " "]
     if not breaks and not splits:
         return None
