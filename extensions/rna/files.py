@@ -232,7 +232,7 @@ def crlf_on_checkout(root: Path, paths: list[str]) -> set[str]:
                             input=b"".join(os.fsencode(path) + b"\0" for path in paths), check=False).stdout
     fields = [os.fsdecode(field) for field in listed.split(b"\0")]
     attributes: dict[str, dict[str, str]] = {}
-    for path, attribute, value in zip(fields[0::3], fields[1::3], fields[2::3]):
+    for path, attribute, value in zip(fields[0::3], fields[1::3], fields[2::3], strict=False):
         attributes.setdefault(path, {})[attribute] = value
     crlf = set()
     for path in paths:
