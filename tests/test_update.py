@@ -610,6 +610,79 @@ def test_add_every_endpoint_kind_to_existing_nodes(project, current_template, tm
         assert fresh_copy_differences(destination, current_template, tmp_path) == []
 
 
+# ─── Executors, callback groups, remappings ──────────────────────────────────
+
+
+def threaded(flavor: Flavor) -> list[dict]:
+    """The base nodes, the driver on a multi-threaded executor (ROS 2: its odometry in a callback group of its
+    own) and both it and the monitor remapped by the launch file."""
+    nodes = flavor.answers["nodes"]
+    driver, monitor = find_node(nodes, "driver"), find_node(nodes, "monitor")
+    driver.update(executor="multi_threaded", threads=2, remappings={"cmd_vel": "base/cmd_vel"})
+    if not flavor.ros1:
+        driver["callback_groups"] = [{"name": "sensing", "type": "reentrant", "members": ["odom"]}]
+    monitor["remappings"] = {"cmd_vel": "base/cmd_vel", "reset": "/robot/reset"}
+    return nodes
+
+
+EXECUTOR_CODE = {"python": "MultiThreadedExecutor(num_threads=2)",
+                 "cpp": "MultiThreadedExecutor executor(rclcpp::ExecutorOptions(), 2)",
+                 "ros1": "ros::MultiThreadedSpinner spinner(2);"}
+
+
+@pytest.mark.parametrize("edited", [True, False], ids=["edited-user-files", "untouched-user-files"])
+@pytest.mark.parametrize("flavor_name", FLAVORS)
+def test_switching_the_executor_and_adding_remappings_keeps_every_user_line(project, current_template, tmp_path,
+                                                                           flavor_name, edited):
+    """The executor and the callback groups live in the base files, the remappings in the launch file: the
+    user files stay as they are, edited or not (an untouched one equals a fresh copy's)."""
+    flavor = Flavor(flavor_name)
+    destination = project(flavor_name)
+    if edited:
+        for name in ("driver", "monitor"):
+            edit_user_file(destination, flavor, name)
+        commit_all(destination)
+    before = {name: (destination / flavor.user_file(name)).read_text() for name in ("driver", "monitor")}
+
+    result = run_update(destination, {"nodes": threaded(flavor)})
+    assert_clean_update(result, destination)
+
+    for name in ("driver", "monitor"):
+        assert (destination / flavor.user_file(name)).read_text() == before[name], flavor.user_file(name)
+    language = "ros1" if flavor.ros1 else flavor.language("driver")
+    base = (destination / flavor.base_file("driver")).read_text()
+    assert EXECUTOR_CODE[language] in base, base
+    if not flavor.ros1:
+        assert "sensing_callback_group" in base, base
+    launch = (destination / flavor.launch_file).read_text()
+    assert launch.count('<remap from="cmd_vel" to="base/cmd_vel"/>') == 2, launch
+    assert '<remap from="reset" to="/robot/reset"/>' in launch, launch
+    assert not to_port_of(result.output), result
+    if not edited:
+        assert fresh_copy_differences(destination, current_template, tmp_path) == []
+
+
+@pytest.mark.parametrize("flavor_name", ["ament_cmake", "catkin"])
+def test_an_edited_cpp_main_of_an_older_release_is_told_to_spin_on_the_new_executor(project, flavor_name):
+    """0.3.1's C++ main() spun the node itself (rclcpp::spin, ros::spin): it keeps working on one thread, and
+    switched to a multi-threaded executor the update leaves a "to port" note and the new starter beside it."""
+    flavor = Flavor(flavor_name)
+    destination = project(flavor_name, RELEASES[-1])
+    edit_user_file(destination, flavor, "driver")
+    commit_all(destination)
+    user = (destination / flavor.user_file("driver")).read_text()
+    assert "Driver::spin(" not in user  # the older form: rclcpp::spin(node), ros::spin()
+
+    result = run_update(destination, {"nodes": threaded(flavor)}, vcs_ref=NEW_VERSION)
+    assert result.returncode == 1, result
+    assert (destination / flavor.user_file("driver")).read_text() == user
+    notes = to_port_of(result.output)
+    assert list(notes) == [flavor.user_file("driver")], result
+    assert "it spins on a multi-threaded executor now, which main() gets by calling Driver::spin()" in notes[
+        flavor.user_file("driver")], result
+    assert (destination / (flavor.user_file("driver") + ".new-starter")).is_file()
+
+
 # ─── Changing a parameter's default ───────────────────────────────────────────
 
 
@@ -807,7 +880,16 @@ def test_upgrade_from_a_release_keeps_user_edits(project, flavor_name, release):
     user_file_before = (destination / flavor.user_file("driver")).read_text()
 
     result = run_update(destination, vcs_ref=NEW_VERSION)
-    assert_clean_update(result, destination)
+    if "CtrlC" in user_file_before:
+        # A Python main() of 0.3 imported the base module's CtrlC, which run() has replaced: the
+        # update stops with a note to port it, the new starter beside it; everything else is done.
+        assert result.returncode == 1, result
+        note = to_port_of(result.output)[flavor.user_file("driver")]
+        assert "no longer has CtrlC, which your code uses: main() is a call of the base module's run() now" in note
+        assert (destination / (flavor.user_file("driver") + ".new-starter")).is_file()
+        assert not conflicted_files(destination), conflict_excerpts(destination)
+    else:
+        assert_clean_update(result, destination)
 
     assert answers_of(destination)["_commit"] == NEW_VERSION
     assert (destination / flavor.user_file("driver")).read_text() == user_file_before
