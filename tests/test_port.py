@@ -243,7 +243,8 @@ def test_nodes_renamed_in_the_port_take_the_users_lines_naming_them_along(curren
 def test_a_ported_node_file_in_conflict_is_left_as_the_conflict_option_says(current_template, tmp_path, conflict):
     project = rover_with_user_lines(current_template, tmp_path / "rover")
     node = project / "rover" / "src" / "driver.cpp"
-    replace_text(node, "  ros::spin();\n", '  ROS_INFO("spinning");\n  ros::spin();\n')  # main() is the template's
+    replace_text(node, "  rover::Driver::spin();\n",
+                 '  ROS_INFO("spinning");\n  rover::Driver::spin();\n')  # main() is the template's
     commit_all(project, "main() of mine")
 
     result = run_update(project, {"ros_distro": PORT_TO}, vcs_ref="HEAD", extra_args=("--conflict", conflict))
@@ -253,9 +254,9 @@ def test_a_ported_node_file_in_conflict_is_left_as_the_conflict_option_says(curr
     rejected = node.with_name("driver.cpp.rej")
     if conflict == "rej":
         assert "<<<<<<<" not in code and 'RCLCPP_INFO(rclcpp::get_logger("driver"), "spinning");' in code, code
-        assert "+  rclcpp::spin(node);" in rejected.read_text() and "rover/src/driver.cpp.rej" in result.stdout
+        assert "+  rover::Driver::spin(node);" in rejected.read_text() and "rover/src/driver.cpp.rej" in result.stdout
     else:
-        assert "<<<<<<< before updating" in code and "rclcpp::spin(node);" in code and not rejected.exists(), code
+        assert "<<<<<<< before updating" in code and "rover::Driver::spin(node);" in code and not rejected.exists(), code
     assert "each TODO(port) is an item for you" in result.stdout, result
     assert "review with `git add -A . && git diff --staged -M HEAD`" in " ".join(result.stdout.split()), result
 
