@@ -18,6 +18,7 @@ from . import distros, features, layout, names
 from .definitions import Definition
 from .interfaces import InterfaceType
 from .licenses import License
+from . import parameters as parameter_rules
 from .parameters import Parameter
 from .qos import Qos
 
@@ -28,6 +29,8 @@ BASE_MEMBERS = ("node_handle", "private_node_handle", "start_goal_thread", "goal
 AUTOSTART_PARAMETER = "autostart"
 # The method of a node with diagnostics that fills in its status (the updater's task).
 DIAGNOSTICS_TASK = "on_diagnostics"
+# The method of a ROS 2 node with parameters that the base class calls after an accepted change.
+PARAMETERS_HOOK = "on_parameters_changed"
 
 
 @dataclass(frozen=True)
@@ -174,6 +177,8 @@ class Node:
     action_clients: tuple[Action, ...] = ()
     timers: tuple[Timer, ...] = ()
     parameters: tuple[Parameter, ...] = ()
+    # ROS 2: its distro's client libraries call post-set parameters callbacks (not Humble's).
+    post_set_callbacks: bool = True
 
     @property
     def is_cpp(self) -> bool:
@@ -219,6 +224,34 @@ class Node:
         """A lifecycle component: loaded into a container, no launch_ros action drives its
         transitions, so its AUTOSTART_PARAMETER has it configure and activate itself."""
         return self.lifecycle and self.component
+
+    def parameter_rules(self, parameter: Parameter) -> tuple[str, ...]:
+        """The rules a parameter's values keep, in words (rna.parameters.rules)."""
+        return parameter_rules.rules(parameter, self.ros)
+
+    def parameter_comment(self, parameter: Parameter) -> str:
+        """The config file's comment above a parameter: its description and rules."""
+        return parameter_rules.comment(parameter, self.ros)
+
+    def parameter_checks(self, parameter: Parameter) -> tuple[tuple[str, str], ...]:
+        """(rule, reason) of each rule the node's own code checks (rna.parameters.checks)."""
+        return parameter_rules.checks(parameter, self.ros)
+
+    @property
+    def has_parameter_rules(self) -> bool:
+        """Some parameter has rules: a range, allowed values, a length, not empty or read-only."""
+        return any(self.parameter_rules(parameter) for parameter in self.parameters)
+
+    @property
+    def checks_parameters(self) -> bool:
+        """The base class itself checks rules of some parameter (beyond ROS 2's ranges and read-only)."""
+        return any(self.parameter_checks(parameter) for parameter in self.parameters)
+
+    @property
+    def on_set_parameters(self) -> bool:
+        """A ROS 2 base class has an on-set parameters callback: to refuse a set that breaks a rule,
+        or, where no post-set callback follows a set (Humble), to update its view of them."""
+        return self.ros == 2 and bool(self.parameters) and (self.checks_parameters or not self.post_set_callbacks)
 
     @property
     def diagnostics_members(self) -> tuple[str, ...]:

@@ -252,7 +252,7 @@ def descriptions_of(package: Package | None, path: str) -> dict:
     if package is None or match is None:
         return {}
     node = next((node for node in package.nodes if node.name == match["node"]), None)
-    return {p.name: p.description for p in node.parameters if p.description} if node else {}
+    return {p.name: node.parameter_comment(p) for p in node.parameters if node.parameter_comment(p)} if node else {}
 
 
 def merge_config_files(project: Project, old: Render, new: Render, packages: tuple[Package | None, Package | None],
