@@ -182,6 +182,30 @@ def test_ros1_types_and_long_forms_kept():
     assert "did you mean Odometry?" in dict(script.refused)["nav_msgs/Odometr"]
 
 
+def test_a_parameters_description_and_rules_are_edited_one_at_a_time():
+    """Each rule is typed as the answers write it (a list without its brackets too) and checked with the node."""
+    script = Script([
+        "Edit driver", "Edit parameter mode", "Allowed values", "slow, medium", "slow, fast", "Description",
+        "How it drives", "Not empty", "Done with mode",
+        "Edit parameter gains", "Number of values", "3", "2", "Done with gains",
+        "Edit parameter rate", "Range", "0.0, 10.0", "Read-only", "Read-only", "Range", "\b", "Done with rate",
+        "Done with", "Done"])
+    start = [{"name": "driver", "parameters": ["mode:string=fast", "gains:double[]=[1.0, 2.0]", "rate=2.5"]}]
+    nodes = dialog.Dialog(start, rules(), script).run()
+    assert nodes[0]["parameters"] == [
+        {"name": "mode", "type": "string", "default": "fast", "one_of": ["slow", "fast"], "description": "How it drives",
+         "not_empty": True},
+        {"name": "gains", "type": "double[]", "default": [1.0, 2.0], "length": 2},
+        "rate=2.5"]  # its range set and taken back: the short form again
+    assert dict(script.refused) == {
+        "slow, medium": "node 'driver': parameter 'mode': default \"fast\" is not one of: slow, medium",
+        "3": "node 'driver': parameter 'gains': the default has 2 values, but length asks for exactly 3 values"}
+    # A rule only where the type takes it: no range for a string, nor a length for a number.
+    assert not any(choice.startswith(("Range", "Number of values")) for choice in script.menus[2])
+    assert "Allowed values: [slow, fast]" in script.menus[5] and "Not empty: yes" in script.menus[5]
+    assert "Number of values: 2" in script.menus[8]
+
+
 def test_without_a_terminal_the_dialog_asks_nothing_and_keeps_the_nodes(template_dir, tmp_path):
     """--defaults (or no terminal): the dialog's nodes are those it starts from, the demo."""
     generate(template_dir, tmp_path / "demo", {"node_setup": "dialog"})

@@ -16,10 +16,12 @@ import textwrap
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
+import yaml
+
 from . import catalogue, distros, names
-from .answers.nodes import Types, parse_node
+from .answers.nodes import Types, parameter_mapping, parse_node
 from .interfaces import InterfaceType
-from .parameters import SCALAR_TYPES
+from .parameters import SCALAR_TYPES, infer_type, parse_type
 from .update.resolve import RENAMED_FROM
 
 WIDTH = 79  # columns of a line, in an 80-column terminal
@@ -60,6 +62,16 @@ FLAGS = {"lifecycle": "Lifecycle node", "autostart": "Configured and activated b
          "component": "Component (rclcpp_components)",
          "diagnostics": "Diagnostics (diagnostic_updater, on /diagnostics)"}
 BACK = "(empty: back)"  # a name left empty adds nothing
+# A parameter's description and rules, edited one at a time: (key, label, which parameters have it).
+PARAMETER_RULES = (
+    ("description", "Description", "one line", lambda ptype, ros: True),
+    ("range", "Range", "min, max or min, max, step", lambda ptype, ros: ptype.is_numeric),
+    ("one_of", "Allowed values", "e.g. slow, fast", lambda ptype, ros: ptype.scalar != "bool"),
+    ("length", "Number of values", "n, [min, max], {min: n} or {max: n}", lambda ptype, ros: ptype.is_array),
+    ("not_empty", "Not empty", "", lambda ptype, ros: ptype.name == "string"),
+    ("read_only", "Read-only", "", lambda ptype, ros: ros == 2),
+)
+FLAG_RULES = ("not_empty", "read_only")
 ADD_NODE = "Add a node"
 DONE = "Done"
 
@@ -97,6 +109,41 @@ def entry_text(key: str, entry: object) -> str:
     first = entry.get("topic", entry.get("name"))
     qos = f":{entry['qos']}" if entry.get("qos") not in (None, "") else ""
     return f"{first}:{entry.get('type')}{qos}"
+
+
+def short_parameter(mapping: Mapping) -> str | dict:
+    """A parameter's mapping as its short form `name:type=default` when it has nothing else."""
+    default = rule_text(mapping["default"]) if "default" in mapping else ""
+    if set(mapping) - {"name", "type", "default"} or "\n" in default:
+        return dict(mapping)
+    return entry_text("parameters", {**mapping, "default": default} if "default" in mapping else mapping)
+
+
+def rule_text(value: object) -> str:
+    """A rule's value as it is typed: [0.0, 10.0], [slow, fast], {min: 1}."""
+    return yaml.safe_dump(value, default_flow_style=True, width=10**6).strip().removesuffix("...").strip()
+
+
+def read_rule(key: str, answer: str) -> object:
+    """What is typed for a rule, as the answers hold it; '' removes it. A list may be typed without brackets."""
+    answer = answer.strip()
+    if not answer or key == "description":
+        return answer
+    try:
+        value = yaml.safe_load(answer)
+        if key in ("range", "one_of") and not isinstance(value, list):
+            value = yaml.safe_load(f"[{answer}]")
+    except yaml.YAMLError:
+        return answer  # the node's check says what is wrong with it
+    return value
+
+
+def parameter_type(mapping: Mapping):
+    """A parameter's type as its answer gives it, or None."""
+    try:
+        return parse_type(mapping["type"]) if mapping.get("type") is not None else infer_type(mapping.get("default"))
+    except ValueError:
+        return None
 
 
 def timer_name(entry: object) -> str:
@@ -276,6 +323,9 @@ class Dialog:
                 choices.append(f"Add {article(kind.label)}")
                 actions.append(("add", kind))
             message = "What next?"
+            for index, entry in enumerate(node.get("parameters") or []):
+                choices.append(fit(f"Edit parameter {entry_text('parameters', entry)}", choice_width(message)))
+                actions.append(("parameter", index))
             for kind in KINDS:
                 for index, entry in enumerate(node.get(kind.key) or []):
                     choices.append(fit(f"Remove {kind.label} {entry_text(kind.key, entry)}", choice_width(message)))
@@ -299,6 +349,8 @@ class Dialog:
                 return
             if action == "add":
                 self.add_endpoint(node, what)
+            elif action == "parameter":
+                self.edit_parameter(node, what)
             elif action == "remove":
                 kind, index = what
                 del node[kind.key][index]
@@ -310,6 +362,63 @@ class Dialog:
                 self._change(node, "language", self._language(str(node.get("language"))))
             elif action == "flag":
                 self._change(node, what, not node.get(what))
+
+    def edit_parameter(self, node: dict, index: int) -> None:
+        """A parameter's description and rules, one at a time, each checked as the node's answer."""
+        while True:
+            mapping = parameter_mapping(node["parameters"][index])
+            ptype = parameter_type(mapping)
+            if ptype is None:
+                return
+            choices, keys = [], []
+            for key, label, _, applies in PARAMETER_RULES:
+                if not applies(ptype, self.rules.types.ros) and key not in mapping:
+                    continue
+                if key in FLAG_RULES:
+                    shown = "yes" if mapping.get(key) else "no"
+                else:
+                    shown = (mapping[key] if key == "description" else rule_text(mapping[key])) if key in mapping \
+                        else "(none)"
+                choices.append(fit(f"{label}: {shown}", choice_width("What next?")))
+                keys.append(key)
+            done = f"Done with {mapping['name']}"
+            choices.append(done)
+            self.ask.say(fit(f"Parameter {entry_text('parameters', mapping)}"))
+            picked = self.ask.select("What next?", choices, default=done)
+            if picked == done:
+                return
+            if picked not in choices:
+                continue
+            key = keys[choices.index(picked)]
+            if key in FLAG_RULES:
+                self._set_rule(node, index, mapping, key, not mapping.get(key))
+                continue
+            label, hint = next((label, hint) for name, label, hint, _ in PARAMETER_RULES if name == key)
+            current = "" if key not in mapping else mapping[key] if key == "description" else rule_text(mapping[key])
+            answer = self.ask.text(f"{label}, {hint} (empty: none)", default=current,
+                                   validate=lambda typed, key=key, mapping=mapping: self._rule_error(
+                                       node, index, mapping, key, typed))
+            self._set_rule(node, index, mapping, key, read_rule(key, answer))
+
+    def _with_rule(self, node: dict, index: int, mapping: dict, key: str, value: object) -> dict:
+        """The node with one rule of a parameter set (a value of '' or False removes it)."""
+        changed = {name: item for name, item in mapping.items() if name != key}
+        if value not in ("", False, None):
+            changed[key] = value
+        entries = list(node["parameters"])
+        entries[index] = short_parameter(changed)
+        return {**node, "parameters": entries}
+
+    def _rule_error(self, node: dict, index: int, mapping: dict, key: str, typed: str) -> str | None:
+        return self.rules.node_error(self._with_rule(node, index, mapping, key, read_rule(key, typed)))
+
+    def _set_rule(self, node: dict, index: int, mapping: dict, key: str, value: object) -> None:
+        changed = self._with_rule(node, index, mapping, key, value)
+        error = self.rules.node_error(changed)
+        if error:
+            self.ask.say(error)
+            return
+        node["parameters"] = changed["parameters"]
 
     def flags(self, node: Mapping) -> list[str]:
         """The yes/no keys a node may change here: diagnostics; in ROS 2 lifecycle, autostart for lifecycle nodes,

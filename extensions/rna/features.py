@@ -81,7 +81,7 @@ ROS2_CPP = {
     "string_parameters": Needs(base=("<string>",)),
     "array_parameters": Needs(base=("<vector>",)),
     # The Params view: a copy under a mutex; the names of those that changed, for the user's hook.
-    "parameters": Needs(base=("<mutex>", "<set>", "<string>", "<vector>")),
+    "parameters": Needs(base=("<mutex>", "<set>", "<string>", "<vector>"), user=("<set>", "<string>")),
     "parameter_checks": Needs(base=("<string>",)),
     "one_of_parameters": Needs(base=("<algorithm>", "<initializer_list>")),
     "on_set_parameters": Needs(("rcl_interfaces",), ("rcl_interfaces/msg/set_parameters_result.hpp",)),

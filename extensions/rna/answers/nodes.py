@@ -21,7 +21,7 @@ from ..model import (AUTOSTART_PARAMETER, BASE_MEMBERS, DIAGNOSTICS_TASK, PARAME
                      Timer, Topic)
 from ..qos import Qos
 from ..parameters import (INT_RANGE, Parameter, ParameterType, coerce_default, coerce_scalar, infer_type,
-                          count_text, length_text, on_step, parse_type, value_text)
+                          count_text, length_text, on_step, parse_type, spelled, value_text)
 from ..shapes import as_list, check_keys, load_yaml
 
 
@@ -234,7 +234,7 @@ def _parse_one_of(value: object, ptype: ParameterType, default: object, value_ra
         except ValueError as error:
             raise ValueError(f"{what}: one_of: {error}") from None
         if isinstance(item, str) and item and names.one_line_error(item):
-            raise ValueError(f"{what}: one_of: allowed value {value_text(item)}: {names.one_line_error(item)}")
+            raise ValueError(f"{what}: one_of: allowed value {spelled(item)}: {names.one_line_error(item)}")
         if item in allowed:
             raise ValueError(f"{what}: one_of lists {value_text(item)} twice")
         if value_range and not value_range[0] <= item <= value_range[1]:
@@ -246,11 +246,11 @@ def _parse_one_of(value: object, ptype: ParameterType, default: object, value_ra
         if not_empty and item == "":
             raise ValueError(f"{what}: one_of allows '', which not_empty refuses")
         allowed.append(item)
-    spelled = ", ".join(value_text(item) for item in allowed)
+    allowed_text = ", ".join(value_text(item) for item in allowed)
     for item in (default if ptype.is_array else [default]):
         if item not in allowed:
             kind = "default element" if ptype.is_array else "default"
-            raise ValueError(f"{what}: {kind} {value_text(item)} is not one of: {spelled}")
+            raise ValueError(f"{what}: {kind} {spelled(item)} is not one of: {allowed_text}")
     return tuple(allowed)
 
 
