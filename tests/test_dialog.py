@@ -193,8 +193,8 @@ def test_a_parameters_description_and_rules_are_edited_one_at_a_time():
     start = [{"name": "driver", "parameters": ["mode:string=fast", "gains:double[]=[1.0, 2.0]", "rate=2.5"]}]
     nodes = dialog.Dialog(start, rules(), script).run()
     assert nodes[0]["parameters"] == [
-        {"name": "mode", "type": "string", "default": "fast", "one_of": ["slow", "fast"], "description": "How it drives",
-         "not_empty": True},
+        {"name": "mode", "type": "string", "default": "fast", "one_of": ["slow", "fast"],
+         "description": "How it drives", "not_empty": True},
         {"name": "gains", "type": "double[]", "default": [1.0, 2.0], "length": 2},
         "rate=2.5"]  # its range set and taken back: the short form again
     assert dict(script.refused) == {

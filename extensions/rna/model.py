@@ -238,11 +238,6 @@ class Node:
         return parameter_rules.checks(parameter, self.ros)
 
     @property
-    def has_parameter_rules(self) -> bool:
-        """Some parameter has rules: a range, allowed values, a length, not empty or read-only."""
-        return any(self.parameter_rules(parameter) for parameter in self.parameters)
-
-    @property
     def checks_parameters(self) -> bool:
         """The base class itself checks rules of some parameter (beyond ROS 2's ranges and read-only)."""
         return any(self.parameter_checks(parameter) for parameter in self.parameters)

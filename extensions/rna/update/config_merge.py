@@ -22,6 +22,7 @@ three versions only, never on how Copier's line merge went.
 from __future__ import annotations
 
 import difflib
+import itertools
 import re
 from dataclasses import dataclass, field
 
@@ -153,8 +154,19 @@ def merge(old_text: str, mine_text: str, new_text: str, descriptions: tuple[dict
     indent = places.indent
     old_descriptions, new_descriptions = descriptions
 
+    # The comment lines the template starts a file with (a ROS 1 file's first parameter follows them),
+    # up to the first parameter's own comment.
+    header = list(itertools.takewhile(lambda line: line.startswith("#"), old_text.split("\n")))
+    first = next(iter(layout(old_text.split("\n")).entries), None)
+    if header and first is not None and header[-1] == f"# {old_descriptions.get(first)}":
+        header.pop()
+
     def description_above(entry: Entry) -> int | None:
-        return entry.key - 1 if entry.key > places.start and lines[entry.key - 1].lstrip().startswith("#") else None
+        above = entry.key - 1
+        if entry.key <= places.start or not lines[above].lstrip().startswith("#"):
+            return None
+        in_header = above < len(header) and lines[:above + 1] == header[:above + 1]
+        return None if in_header else above
 
     edits: list[tuple[int, int, list[str]]] = []  # (from, to, replacement) on the user's lines
     for name, entry in places.entries.items():
