@@ -14,7 +14,8 @@ import xml.etree.ElementTree as ET
 import pytest
 import yaml
 from rna import AnswerError, build_package
-from rna.distros import AUTOSTART_DISTROS, DISCOVERY_OFF_DISTROS, ROS2_DISTROS, UBUNTU
+from rna import launch_features
+from rna.distros import DISCOVERY_OFF_DISTROS, ROS2_DISTROS, UBUNTU
 from support.generation import VALID, generate
 from support.packages import package_dir
 
@@ -30,12 +31,11 @@ ANSWERS = {
 
 @pytest.fixture(scope="module")
 def packages(template_folder, tmp_path_factory) -> dict:
-    """The package generated once for each ROS 2 distro, with autostart where the distro has it."""
+    """The package generated once for each ROS 2 distro, its lifecycle node started by the launch file."""
     made = {}
     for distro in ROS2_DISTROS:
         answers = {**ANSWERS, "ros_distro": distro}
-        if distro in AUTOSTART_DISTROS:
-            answers["nodes"] = [*ANSWERS["nodes"][:2], {**ANSWERS["nodes"][2], "autostart": True}]
+        answers["nodes"] = [*ANSWERS["nodes"][:2], {**ANSWERS["nodes"][2], "autostart": True}]
         destination = tmp_path_factory.mktemp(distro)
         generate(template_folder, destination, answers)
         made[distro] = package_dir(destination)
@@ -78,17 +78,23 @@ def test_python_main_shuts_its_executor_down_then_destroys_its_node_before_ros(p
 
 
 @pytest.mark.parametrize("distro", ROS2_DISTROS)
-def test_lifecycle_autostart_where_the_distros_launch_ros_has_it(packages, distro):
-    """<lifecycle_node autostart="true"> from Jazzy on; for Humble the answer is refused and the node is plain."""
+def test_lifecycle_autostart_in_the_form_every_release_of_the_distros_launch_ros_reads(packages, distro):
+    """<lifecycle_node autostart="true"> where every release of the distro's launch_ros has it
+    (Rolling's newest; Jazzy's from 0.26.12, Kilted's from 0.28.6 only); elsewhere a plain
+    <node> whose own autostart parameter the launch file sets, which any launch_ros reads."""
     launch = ET.parse(packages[distro] / "launch" / "rover.launch.xml").getroot()
-    started = {node.get("exec"): node for node in launch}
-    if distro in AUTOSTART_DISTROS:
-        assert started["beacon"].tag == "lifecycle_node" and started["beacon"].get("autostart") == "true"
+    started = {node.get("exec"): node for node in launch if node.tag != "arg"}
+    beacon = started["beacon"]
+    assert beacon.get("namespace") == ""
+    if distro == "rolling":
+        assert beacon.tag == "lifecycle_node" and beacon.get("autostart") == "true"
     else:
-        assert started["beacon"].tag == "node"
-        nodes = [*ANSWERS["nodes"][:2], {**ANSWERS["nodes"][2], "autostart": True}]
-        with pytest.raises(AnswerError, match=f"which {distro}'s launch_ros lacks"):
-            build_package({**VALID, "ros_distro": distro, "nodes": nodes})
+        assert beacon.tag == "node" and "autostart" not in beacon.attrib
+        assert [p.attrib for p in beacon.findall("param")][1] == {"name": "autostart", "value": "true"}
+    # The node declares the parameter, whichever form the launch file uses.
+    assert "'autostart'" in (packages[distro] / "rover" / "beacon_base.py").read_text()
+    assert launch_features.autostart_form(distro, "python") == (
+        "launch_ros" if distro in ("kilted", "rolling") else "parameter")
 
 
 @pytest.mark.parametrize("distro", ROS2_DISTROS)

@@ -355,5 +355,7 @@ def test_a_long_cpp_message_variable_breaks_within_100_columns(make_package, ros
                                         "nodes": [{"name": "talker", "language": "cpp", "publishers": publishers,
                                                    "timers": [0.5]}]}))
     text = (package / "src" / "talker.cpp").read_text()
-    assert f"    {long_id}_msg.data =\n      static_cast<decltype({long_id}_msg.data)>(count_);\n" in text
+    access = "." if ros_distro == "noetic" else "->"  # ROS 2 builds a std::unique_ptr (zero-copy publishing)
+    assert (f"    {long_id}_msg{access}data =\n      static_cast<decltype({long_id}_msg{access}data)>(count_);\n"
+            in text)
     assert max(len(line) for line in text.splitlines()) <= 100

@@ -123,7 +123,7 @@ def test_a_valid_answer_set_gives_files_that_read_back(template_folder, answers)
                                                               model.maintainer_email)
         lint_python(python)
         if model.ros == 2:  # in any format, the launch file starts every node as the answers say
-            assert description(package / model.launch_file) == expected_description(model)
+            assert description(package / model.launch_file, model.ros_distro) == expected_description(model)
         assert not table_rows_of_wrong_width((destination / "README.md").read_text(encoding="utf-8"))
 
         for node in model.nodes:

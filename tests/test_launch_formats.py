@@ -10,7 +10,8 @@ import fnmatch
 import re
 
 import pytest
-from rna import build_package, layout
+from rna import build_package, launch_features, layout
+from rna.distros import ROS2_DISTROS
 from support.generation import example
 from support.launch_files import description, expected_description
 from support.packages import dependencies, package_dir
@@ -58,22 +59,34 @@ def test_ros1_launch_files_are_xml_only():
     assert layout.launch_format_error("json", 2) == "'json' is not one of xml, python, yaml"
 
 
-@pytest.mark.parametrize("case", sorted(MATRIX))
-def test_every_format_starts_the_same_nodes_the_same_way(make_package, case):
+def _started(description: dict) -> dict:
+    """The description with how each node is started left out: launch_ros or the node's own parameter."""
+    return {**description, "nodes": [{**node, "autostart": bool(node["autostart"])} for node in description["nodes"]]}
+
+
+CASES = [(case, MATRIX[case].get("ros_distro", distro)) for case in sorted(MATRIX)
+         for distro in (ROS2_DISTROS if case in ("lifecycle", "components") else ("jazzy",))]
+
+
+@pytest.mark.parametrize(("case", "distro"), CASES)
+def test_every_format_starts_the_same_nodes_the_same_way(make_package, case, distro):
+    """Each format reads back as the model says, using only what every release of the distro's
+    launch_ros has; the three start the same nodes, however each distro's launch_ros lets them."""
     descriptions = {}
     for launch_format in FORMATS:
-        answers = {**MATRIX[case], "launch_format": launch_format}
+        answers = {**MATRIX[case], "launch_format": launch_format, "ros_distro": distro}
         model = build_package({"description": "d", "maintainer": "m", "maintainer_email": "m@example.com",
-                               "license": "MIT", "copyright_holder": "m", "copyright_year": 2026,
-                               "ros_distro": "jazzy", **answers})
+                               "license": "MIT", "copyright_holder": "m", "copyright_year": 2026, **answers})
         destination = make_package(answers)
         package = package_dir(destination)
         launch = package / model.launch_file
         assert sorted(p.name for p in (package / "launch").iterdir()) == [launch.name]
         if launch_format == "python":
             compile(launch.read_text(), str(launch), "exec")
-        descriptions[launch_format] = description(launch)
+        descriptions[launch_format] = description(launch, distro)
         assert descriptions[launch_format] == expected_description(model), launch_format
+        autostarted = [node for node in descriptions[launch_format]["nodes"] if node["autostart"]]
+        assert all(node["autostart"] == launch_features.autostart_form(distro, launch_format) for node in autostarted)
         readme = (destination / "README.md").read_text()
         assert f"ros2 launch {model.name} {launch.name}\n" in readme
         assert f"loaded by {model.launch_file}." in (package / "config" / f"{model.nodes[0].name}.yaml").read_text()
@@ -86,7 +99,7 @@ def test_every_format_starts_the_same_nodes_the_same_way(make_package, case):
         # A Python launch file imports launch and launch_ros: package.xml says so.
         launch_packages = {"launch", "launch_ros"} & dependencies(package / "package.xml")["exec_depend"]
         assert launch_packages == ({"launch", "launch_ros"} if launch_format == "python" else set())
-    assert descriptions["xml"] == descriptions["python"] == descriptions["yaml"]
+    assert _started(descriptions["xml"]) == _started(descriptions["python"]) == _started(descriptions["yaml"])
 
 
 def test_the_managed_block_holds_every_node_in_each_format(make_package):

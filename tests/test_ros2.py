@@ -55,6 +55,8 @@ BUSY = {"package_name": "busy_robot", "build_type": "ament_python", "nodes": [
     {"name": "server", "publishers": ["beat:std_msgs/msg/Int32"], "timers": [0.05],
      "service_servers": ["reset:std_srvs/srv/Trigger"], "action_servers": ["fibonacci:test_msgs/action/Fibonacci"]}]}
 
+ABORTED = 6  # action_msgs/msg/GoalStatus.STATUS_ABORTED (the test process has no ROS)
+
 # Every kind of Python node, with fast timers so that a SIGINT often lands mid-callback.
 STOPPABLE = example("every_python_node")
 
@@ -103,9 +105,12 @@ def build_workspace(ros2: ros2_support.Ros2Environment, template_dir: Path, path
     for name, answers in packages.items():
         if names is None or name in names:
             generate(template_dir, path / "src" / name, {**(answers or {}), "ros_distro": ros2.distro})
-    if names is None or "busy_robot" in names:
-        server = path / "src" / "busy_robot" / "busy_robot" / "busy_robot" / "server.py"
-        server.write_text(server.read_text().replace("for _ in range(3):", "for _ in range(10):"))
+    # Goals made to last about a second (busy_robot) and three (the beacon), to be met running.
+    for name, module, steps in (("busy_robot", "busy_robot/server.py", 10),
+                                ("robot_beacons", "robot_beacons/beacon.py", 30)):
+        if names is None or name in names:
+            user_file = path / "src" / name / name / module
+            user_file.write_text(user_file.read_text().replace("for _ in range(3):", f"for _ in range({steps}):"))
     if names is None or "robot_services" in names:
         # A user's callback reads the node's parameters, as a user's code does.
         server = path / "src" / "robot_services" / "robot_services" / "robot_services" / "server.py"
@@ -221,6 +226,37 @@ def test_server_stopped_during_a_goal_exits_cleanly(workspace):
                  workspace.node("robot_services", "client", log="client_mid_goal")) as (server, client):
         client.wait_for("Feedback on the fibonacci goal")
         stop_all(server, client)
+
+
+@ON_EVERY_DISTRO
+def test_a_goal_running_as_its_server_stops_is_aborted_and_its_client_gets_the_result(workspace):
+    """Ctrl-C mid-goal: the server aborts the goal and sends its result before it exits, so the
+    client waits for nothing; the goal's thread ends before the node is destroyed."""
+    with started(workspace.node("busy_robot", "server", log="server_stopped_mid_goal")) as (server,):
+        client = NodeProcess([str(workspace.ros2.python), str(ros2_support.PROBE), "goal_result", "/fibonacci"],
+                             env=workspace.env, log_path=workspace.logs / "goal_result_client.log")
+        with started(client):
+            client.wait_for("executing")
+            assert_clean_exit(server, server.interrupt())
+            assert client.wait() == 0, client.output
+    result = json.loads(client.output.strip().splitlines()[-1])
+    assert result["status"] == ABORTED, result
+    assert result["seconds"] < 5.0, result  # the rest of the goal (1 s at most) need not run
+    assert not re.search(r"\[(WARN|ERROR)\]", server.output), server.output
+
+
+@ON_EVERY_DISTRO
+def test_an_inactive_lifecycle_node_offers_no_service_and_rejects_goals(workspace):
+    """The managed-node design's inactive state: configured, not processing. The beacon's service
+    is offered and its goals accepted only while active; a goal running as it is deactivated is
+    aborted, its client told so."""
+    with started(workspace.node("robot_beacons", "beacon", log="beacon_gating")) as (beacon,):
+        measured = json.loads(workspace.probe("gating", "beacon", "/reset", "/fibonacci").splitlines()[-1])
+        stop_all(beacon)
+    assert measured["inactive"] == {"service_offered": False, "goal_accepted": False}, measured
+    assert measured["active"] == {"service_offered": True, "service_answered": True, "goal_accepted": True}, measured
+    assert measured["deactivated"]["running_goal_status"] == ABORTED, measured
+    assert "fibonacci goal rejected: the node is not active" in beacon.output
 
 
 @ON_EVERY_DISTRO

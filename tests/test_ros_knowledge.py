@@ -8,7 +8,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 import yaml
-from rna import build_package, configs, distros, names
+from rna import build_package, configs, distros, launch_features, names
 from rna.dialects import Ros1Cpp, Ros1Python, Ros2Cpp, Ros2Python, cpp, python
 from rna.interfaces import InterfaceType, parse_interface
 from rna.licenses import LICENSES
@@ -17,14 +17,26 @@ from rna.replies import replies
 from support.generation import VALID, example
 
 
-@pytest.mark.parametrize(("distro", "refused"), [("jazzy", False), ("kilted", False), ("rolling", False),
-                                                ("humble", True), (None, False)])
-def test_autostart_follows_the_distros_launch_ros(distro, refused):
-    """launch_ros autostarts lifecycle nodes (XML, YAML and Python) from Jazzy on; no distro (yet) refuses nothing."""
-    error = distros.autostart_error(distro)
-    assert bool(error) == refused
-    if refused:
-        assert "humble" in error and "jazzy" in error
+@pytest.mark.parametrize(("feature", "distro", "available"), [
+    ("<lifecycle_node>", "humble", False), ("<lifecycle_node>", "jazzy", False), ("<lifecycle_node>", "kilted", False),
+    ("<lifecycle_node>", "rolling", True), ("LifecycleNode(autostart)", "humble", False),
+    ("LifecycleNode(autostart)", "jazzy", False), ("LifecycleNode(autostart)", "kilted", True),
+    ("LifecycleNode(autostart)", "rolling", True), ("node_container", "humble", True)])
+def test_a_launch_feature_counts_when_every_release_of_the_distro_has_it(feature, distro, available):
+    """Jazzy got LifecycleNode(autostart) in 0.26.7, after its first release (0.26.5); Kilted's
+    first (0.28.1) had it."""
+    assert launch_features.available(feature, distro) is available
+
+
+def test_the_launch_table_covers_every_ros2_distro():
+    for feature, releases in launch_features.SINCE.items():
+        assert set(releases) == set(distros.ROS2_DISTROS), feature
+    assert set(launch_features.FIRST_RELEASE) == set(distros.ROS2_DISTROS)
+    assert "lifecycle_node" not in launch_features.frontend("kilted") and "lifecycle_node" in launch_features.frontend(
+        "rolling")
+    assert "autostart" not in launch_features.python_api("jazzy")["LifecycleNode"][1]
+    with pytest.raises(ValueError, match="noetic is not a ROS 2 distro"):
+        launch_features.available("<lifecycle_node>", "noetic")
 
 
 @pytest.mark.parametrize("name", ["turtlesim", "my_robot2", "a1", "target_tracking"])

@@ -21,10 +21,6 @@ BUILD_TYPES_OF = {2: ("ament_cmake", "ament_python"), 1: ("catkin",)}
 BUILDS_INTERFACES = ("ament_cmake", "catkin")
 LANGUAGES = {"cpp": "cpp", "c++": "cpp", "python": "python", "py": "python"}
 LANGUAGE_NAMES = {"cpp": "C++", "python": "Python"}
-# Distributions whose launch_ros configures and activates a lifecycle node it starts: the
-# autostart of LifecycleNode (Python) and of <lifecycle_node> (XML, YAML), from launch_ros
-# 0.26.12 (Jazzy) and 0.28.6 (Kilted); Humble's has neither, nor a lifecycle_node element.
-AUTOSTART_DISTROS = ("jazzy", "kilted", "rolling")
 # Distributions whose rcl reads ROS_AUTOMATIC_DISCOVERY_RANGE (from Iron on): OFF keeps a
 # process's participant from discovering any other, so a node unit test's graph holds its own
 # nodes only. Humble has ROS_LOCALHOST_ONLY, which still discovers the machine's processes.
@@ -50,15 +46,6 @@ def default_language(build_type: str) -> str:
 def node_language(build_type: str, asked: object) -> str:
     """The language of a node answered at the prompt: the one asked when the build type holds it."""
     return asked if asked in languages(build_type) else default_language(build_type)
-
-
-def autostart_error(distro: object) -> str | None:
-    """Why a lifecycle node cannot be configured and activated by the launch file, or None."""
-    if distro is None or distro in AUTOSTART_DISTROS:
-        return None
-    return (f"autostart needs launch_ros's <lifecycle_node autostart=\"true\"> (LifecycleNode(autostart=True) in "
-            f"Python), which {distro}'s launch_ros lacks ({', '.join(AUTOSTART_DISTROS)} have it): drive the "
-            "node's transitions from another process")
 
 
 def language_error(build_type: str, language: str) -> str | None:

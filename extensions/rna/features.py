@@ -33,6 +33,7 @@ def node_features(node) -> frozenset[str]:
         "starts_itself": node.starts_itself,
         "diagnostics": node.diagnostics,
         "executable": not node.component,
+        "builds_messages": bool(node.starter_built_messages),
         "timers": bool(node.timers),
         "services": bool(node.service_servers or node.service_clients),
         "actions": bool(node.actions),
@@ -72,10 +73,13 @@ ROS2_CPP = {
                          ("diagnostic_msgs/msg/diagnostic_status.hpp",
                           "diagnostic_updater/diagnostic_status_wrapper.hpp")),
     "timers": Needs(base=("<chrono>",)),
+    # The starter code hands each message it builds to publish() as a std::unique_ptr.
+    "builds_messages": Needs(user=("<memory>", "<utility>")),
     "services": Needs(base=("<memory>",)),
     "actions": Needs(("rclcpp_action",), ("<memory>", "rclcpp_action/rclcpp_action.hpp")),
     # Each goal in a thread of its own (the base's start_goal_thread()).
-    "action_servers": Needs(base=("<chrono>", "<functional>", "<future>", "<list>", "<mutex>", "<utility>")),
+    "action_servers": Needs(base=("<atomic>", "<functional>", "<list>", "<memory>", "<mutex>", "<thread>",
+                                  "<utility>")),
     "action_clients": Needs(base=("<atomic>",)),
     "parameter_descriptors": Needs(("rcl_interfaces",), ("rcl_interfaces/msg/parameter_descriptor.hpp",)),
     "string_parameters": Needs(base=("<string>",)),
@@ -97,6 +101,8 @@ ROS2_PYTHON = {
                          ("diagnostic_msgs.msg:DiagnosticStatus",)),
     "lifecycle": Needs(base=("rclpy.lifecycle:Node", "rclpy.lifecycle:State",
                              "rclpy.lifecycle:TransitionCallbackReturn")),
+    # The read-only autostart parameter a lifecycle node configures and activates itself by.
+    "starts_itself": Needs(("rcl_interfaces",), ("rcl_interfaces.msg:ParameterDescriptor",)),
     "sensor_data_qos": Needs(base=("rclpy.qos:qos_profile_sensor_data",)),
     "system_default_qos": Needs(base=("rclpy.qos:qos_profile_system_default",)),
     "qos_profiles": Needs(base=("rclpy.qos:QoSProfile",)),
@@ -104,7 +110,7 @@ ROS2_PYTHON = {
     "reliability_policy": Needs(base=("rclpy.qos:ReliabilityPolicy",)),
     "durability_policy": Needs(base=("rclpy.qos:DurabilityPolicy",)),
     # threading and Future: each goal runs in a thread of its own (the base's _in_goal_thread).
-    "action_servers": Needs(base=("threading", "rclpy.action:ActionServer", "rclpy.action:CancelResponse",
+    "action_servers": Needs(base=("threading", "time", "rclpy.action:ActionServer", "rclpy.action:CancelResponse",
                                   "rclpy.action:GoalResponse", "rclpy.task:Future"),
                             user=("time",)),
     # GoalStatus, to report how a goal ended.

@@ -14,13 +14,13 @@ import posixpath
 from dataclasses import dataclass, field
 from functools import cached_property
 
-from . import distros, features, layout, names
+from . import distros, features, launch_features, layout, names
 from .definitions import Definition
 from .interfaces import InterfaceType
 from .licenses import License
 from . import parameters as parameter_rules
 from .parameters import Parameter
-from .qos import Qos
+from .qos import Qos, intra_process_error
 
 # Members the generated base classes declare besides the endpoints'.
 BASE_MEMBERS = ("node_handle", "private_node_handle", "start_goal_thread", "goal_threads", "goal_threads_mutex",
@@ -221,9 +221,12 @@ class Node:
 
     @property
     def starts_itself(self) -> bool:
-        """A lifecycle component: loaded into a container, no launch_ros action drives its
-        transitions, so its AUTOSTART_PARAMETER has it configure and activate itself."""
-        return self.lifecycle and self.component
+        """A lifecycle node that configures and activates itself when its AUTOSTART_PARAMETER is true.
+
+        A component, since no launch_ros action drives a node loaded into a container; and a node
+        answered autostart, whose launch file sets it where the distro's launch_ros cannot drive
+        the node in that format (rna.launch_features.autostart_form)."""
+        return self.lifecycle and (self.component or self.autostart)
 
     def parameter_rules(self, parameter: Parameter) -> tuple[str, ...]:
         """The rules a parameter's values keep, in words (rna.parameters.rules)."""
@@ -305,6 +308,12 @@ class Node:
         if self.timers and (self.publishers or self.service_clients or self.action_clients):
             return self.timers[0]
         return None
+
+    @property
+    def starter_log_throttle(self) -> float | None:
+        """Seconds between the starter code's "Publishing" logs when its timer fires faster than
+        twice a second (a control loop logs once a second, not on every tick), else None."""
+        return 1.0 if self.driver_timer and self.driver_timer.period < 0.5 else None
 
     @property
     def relay(self) -> Topic | None:
@@ -400,9 +409,16 @@ class Package:
         return distros.generation(self.ros_distro)
 
     @property
-    def offers_autostart(self) -> bool:
-        """Its launch file can configure and activate lifecycle nodes (distros.autostart_error)."""
-        return distros.autostart_error(self.ros_distro) is None
+    def autostart_form(self) -> str:
+        """How its launch file has an autostart lifecycle node configured and activated:
+        "launch_ros" or "parameter" (rna.launch_features.autostart_form)."""
+        return launch_features.autostart_form(self.ros_distro, self.launch_format) if self.ros == 2 else "parameter"
+
+    def intra_process(self, node: Node) -> bool:
+        """A component whose messages a container passes by pointer: the launch file loads it with
+        use_intra_process_comms, which every QoS of its topics allows (qos.intra_process_error)."""
+        return node.component and not any(intra_process_error(topic.qos, self.ros_distro)
+                                           for topic in node.publishers + node.subscribers)
 
     @property
     def tests_own_graph(self) -> bool:

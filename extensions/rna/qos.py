@@ -54,6 +54,19 @@ class Qos:
         return (self.reliability, self.durability, self.history) == ("reliable", "volatile", "keep_last")
 
 
+def intra_process_error(qos: Qos, distro: str) -> str | None:
+    """Why rclcpp refuses intra-process communication with this QoS on the distro, or None.
+
+    rclcpp's publishers and subscriptions throw std::invalid_argument at creation when
+    use_intra_process_comms is set and the history is not keep_last with a depth, or, in
+    Humble, the durability is not volatile (transient_local came with Iron)."""
+    if qos.history != "keep_last" or qos.depth <= 0:
+        return "intra-process communication needs keep_last history with a depth"
+    if qos.durability != "volatile" and (distro == "humble" or qos.durability != "transient_local"):
+        return f"intra-process communication in {distro} needs volatile durability"
+    return None
+
+
 def describe(qos: Qos, ros: int = 2, publisher: bool = False) -> str:
     """The QoS in a few words, for the package README: its preset, or its policies; for
     ROS 1, what it maps to (a queue size, and latching on a publisher)."""

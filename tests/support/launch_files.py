@@ -4,9 +4,12 @@ launch and launch_ros are not on the package registries, so no tier runs a launc
 (docs/pages/reference/testing.md). What they would do is read here statically: the XML
 and YAML files through the entities and attributes launch's frontends parse (a frontend
 refuses an attribute its action does not read), the Python file through launch_ros's
-Python API, its calls evaluated from the source without importing it. Each reads back as
-the same description: arguments, nodes (package, executable, name, namespace, parameter
-files, lifecycle autostart, condition) and containers with the nodes they load.
+Python API, its calls evaluated from the source without importing it. Each is read for one
+distro and may use only what every release of that distro's launch_ros has
+(rna.launch_features, the one home of that table). Each reads back as the same
+description: arguments, nodes (package, executable, name, namespace, parameter files,
+lifecycle autostart by launch_ros or by the node's own parameter, condition) and containers
+with the nodes they load (parameters, intra-process communication).
 """
 
 from __future__ import annotations
@@ -16,42 +19,21 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import yaml
+from rna import launch_features
 
-# The frontend entities the template writes and the attributes launch / launch_ros parse for
-# each (launch's Action: if, unless; ExecuteProcess: output; launch_ros's Node, LifecycleNode,
-# ComposableNodeContainer, ComposableNode; launch's DeclareLaunchArgument).
-_NODE = {"pkg", "exec", "name", "namespace", "output", "if", "unless", "param", "remap", "args", "ros_args"}
-FRONTEND = {
-    "arg": {"name", "default", "description", "choice"},
-    "node": _NODE,
-    "lifecycle_node": _NODE | {"autostart"},
-    "node_container": _NODE | {"composable_node"},
-    "composable_node": {"pkg", "plugin", "name", "namespace", "param", "remap", "extra_arg"},
-    "param": {"from", "name", "value"},
-}
 BOOLEAN_ATTRIBUTES = {"autostart"}
 # Read with any type (launch_ros's <param value>): a YAML value keeps its own; XML's text is read as YAML.
 TYPED_ATTRIBUTES = {"value"}
-# Each name a Python launch file may use: the module that exports it, and its keyword arguments.
-_PY_NODE = {"package", "executable", "name", "namespace", "output", "parameters", "condition", "remappings",
-            "arguments", "ros_arguments"}
-PYTHON_API = {
-    "LaunchDescription": ("launch", set()),
-    "DeclareLaunchArgument": ("launch.actions", {"default_value", "description", "choices"}),
-    "IfCondition": ("launch.conditions", set()),
-    "UnlessCondition": ("launch.conditions", set()),
-    "LaunchConfiguration": ("launch.substitutions", set()),
-    "PathJoinSubstitution": ("launch.substitutions", set()),
-    "Node": ("launch_ros.actions", _PY_NODE),
-    "LifecycleNode": ("launch_ros.actions", _PY_NODE | {"autostart"}),
-    "ComposableNodeContainer": ("launch_ros.actions", _PY_NODE | {"composable_node_descriptions"}),
-    "ComposableNode": ("launch_ros.descriptions", {"package", "plugin", "name", "namespace", "parameters",
-                                                   "remappings", "extra_arguments"}),
-    "FindPackageShare": ("launch_ros.substitutions", set()),
-}
+AUTOSTART = ("autostart", True)  # rna.model.AUTOSTART_PARAMETER, set to true
 
 
 def _node(pkg, exec_, name, namespace, params, autostart, condition) -> dict:
+    """A node; `autostart` is "launch_ros", "parameter" (the node's own, set true) or None."""
+    params = list(params)
+    if AUTOSTART in params:
+        assert autostart is None, f"{name}: started by launch_ros and by its parameter"
+        params.remove(AUTOSTART)
+        autostart = "parameter"
     return {"pkg": pkg, "exec": exec_, "name": name, "namespace": namespace, "params": tuple(params),
             "autostart": autostart, "condition": condition}
 
@@ -69,9 +51,9 @@ def _description(args: dict, nodes: list[dict], containers: list[dict]) -> dict:
 
 # ----------------------------------------------------------------------------- XML and YAML
 
-def _check_attributes(tag: str, attributes) -> None:
-    assert tag in FRONTEND, f"<{tag}> is not an entity this template writes"
-    unknown = set(attributes) - FRONTEND[tag]
+def _check_attributes(frontend: dict, tag: str, attributes) -> None:
+    assert tag in frontend, f"<{tag}> is not an entity this template writes for the distro"
+    unknown = set(attributes) - frontend[tag]
     assert not unknown, f"{tag}: launch does not read {sorted(unknown)}"
 
 
@@ -79,34 +61,43 @@ def _true(value) -> bool:
     return value is True or str(value).lower() == "true"
 
 
-def _read_entities(entities, typed: bool) -> dict:
+def _read_entities(entities, typed: bool, distro: str) -> dict:
     """(tag, attributes, children by tag) of each top-level action, in order, as one description;
     typed: the values are YAML's own (a YAML file), not text (an XML file)."""
+    frontend = launch_features.frontend(distro)
     args, nodes, containers = {}, [], []
     for tag, attributes, children in entities:
-        _check_attributes(tag, attributes)
+        _check_attributes(frontend, tag, attributes)
         for child_tag, items in children.items():
             for child_attributes, _ in items:
-                _check_attributes(child_tag, child_attributes)
-        params = [attrs["from"] for attrs, _ in children.get("param", [])]
+                _check_attributes(frontend, child_tag, child_attributes)
+        params = [_param(attrs, typed) for attrs, _ in children.get("param", [])]
         if tag == "arg":
             args[attributes["name"]] = attributes.get("default")
         elif tag in ("node", "lifecycle_node"):
+            started = "launch_ros" if tag == "lifecycle_node" and _true(attributes.get("autostart")) else None
             nodes.append(_node(attributes["pkg"], attributes["exec"], attributes.get("name"),
-                               attributes.get("namespace"), params,
-                               tag == "lifecycle_node" and _true(attributes.get("autostart")),
-                               _condition(attributes)))
+                               attributes.get("namespace"), params, started, _condition(attributes)))
         elif tag == "node_container":
             loaded = []
             for attrs, grandchildren in children.get("composable_node", []):
-                for param, _ in grandchildren.get("param", []):
-                    _check_attributes("param", param)
+                for child_tag in ("param", "extra_arg"):
+                    for child, _ in grandchildren.get(child_tag, []):
+                        _check_attributes(frontend, child_tag, child)
+                extra = [(a["name"], _extra_value(a["value"])) for a, _ in grandchildren.get("extra_arg", [])]
                 loaded.append({"pkg": attrs["pkg"], "plugin": attrs["plugin"], "name": attrs.get("name"),
-                               "params": tuple(_param(p, typed) for p, _ in grandchildren.get("param", []))})
+                               "params": tuple(_param(p, typed) for p, _ in grandchildren.get("param", [])),
+                               "extra": tuple(extra)})
             containers.append({"pkg": attributes["pkg"], "exec": attributes["exec"], "name": attributes["name"],
                                "namespace": attributes.get("namespace"), "condition": _condition(attributes),
                                "nodes": loaded})
     return _description(args, nodes, containers)
+
+
+def _extra_value(value):
+    """launch_ros reads an extra_arg's value as text (a YAML value must be a string), then as YAML."""
+    assert isinstance(value, str), f"extra_arg value {value!r}: launch_ros reads it as a string"
+    return yaml.safe_load(value)
 
 
 def _param(attributes, typed: bool) -> str | tuple[str, object]:
@@ -125,10 +116,10 @@ def _xml_children(element) -> dict:
     return children
 
 
-def read_xml(text: str) -> dict:
+def read_xml(text: str, distro: str) -> dict:
     root = ET.fromstring(text)
     assert root.tag == "launch"
-    return _read_entities(((child.tag, dict(child.attrib), _xml_children(child)) for child in root), typed=False)
+    return _read_entities(((child.tag, dict(child.attrib), _xml_children(child)) for child in root), False, distro)
 
 
 def _yaml_entity(tag: str, body) -> tuple[str, dict, dict]:
@@ -139,12 +130,12 @@ def _yaml_entity(tag: str, body) -> tuple[str, dict, dict]:
                 for key, value in body.items() if isinstance(value, list)}
     for key, value in attributes.items():
         # launch_yaml hands a true/false on to the attributes read as booleans only, text to the others.
-        if key not in TYPED_ATTRIBUTES:
+        if key not in TYPED_ATTRIBUTES or tag == "extra_arg":
             assert isinstance(value, bool if key in BOOLEAN_ATTRIBUTES else str), f"{tag}: {key}: {value!r}"
     return tag, attributes, children
 
 
-def read_yaml(text: str) -> dict:
+def read_yaml(text: str, distro: str) -> dict:
     document = yaml.safe_load(text)
     assert list(document) == ["launch"], "a YAML launch file is one `launch:` list"
     entities = []
@@ -152,7 +143,7 @@ def read_yaml(text: str) -> dict:
         assert isinstance(item, dict) and len(item) == 1, f"each action is a mapping of one entity: {item!r}"
         ((tag, body),) = item.items()
         entities.append(_yaml_entity(tag, body))
-    return _read_entities(entities, typed=True)
+    return _read_entities(entities, True, distro)
 
 
 # ----------------------------------------------------------------------------- Python
@@ -160,8 +151,9 @@ def read_yaml(text: str) -> dict:
 class _Reader:
     """Evaluates generate_launch_description()'s statements as launch_ros would build them."""
 
-    def __init__(self, imports: dict[str, str]) -> None:
+    def __init__(self, imports: dict[str, str], distro: str) -> None:
         self.imports = imports
+        self.api = launch_features.python_api(distro)
         self.names: dict[str, object] = {}
 
     def value(self, node: ast.expr):
@@ -179,8 +171,8 @@ class _Reader:
         raise AssertionError(f"line {node.lineno}: {ast.unparse(node)} is more than the launch file needs")
 
     def call(self, name: str, args: list, kwargs: dict, node: ast.Call):
-        assert name in PYTHON_API, f"line {node.lineno}: {name} is not part of launch or launch_ros's API used here"
-        module, keywords = PYTHON_API[name]
+        assert name in self.api, f"line {node.lineno}: {name} is not part of launch or launch_ros's API used here"
+        module, keywords = self.api[name]
         assert self.imports.get(name) == module, f"{name} is imported from {self.imports.get(name)}, not {module}"
         assert set(kwargs) <= keywords, f"line {node.lineno}: {name} takes no {sorted(set(kwargs) - keywords)}"
         if name == "FindPackageShare":
@@ -194,13 +186,13 @@ class _Reader:
         return {"call": name, "args": args, **kwargs}
 
 
-def read_python(text: str) -> dict:
+def read_python(text: str, distro: str) -> dict:
     tree = ast.parse(text)
     imports = {alias.asname or alias.name: statement.module for statement in tree.body
                if isinstance(statement, ast.ImportFrom) for alias in statement.names}
     (function,) = [s for s in tree.body if isinstance(s, ast.FunctionDef)]
     assert function.name == "generate_launch_description" and not function.args.args
-    reader = _Reader(imports)
+    reader = _Reader(imports, distro)
     returned = None
     for statement in function.body:
         if isinstance(statement, ast.Expr) and isinstance(statement.value, ast.Constant):
@@ -219,13 +211,16 @@ def read_python(text: str) -> dict:
         if call == "DeclareLaunchArgument":
             args[action["args"][0]] = action.get("default_value")
         elif call in ("Node", "LifecycleNode"):
-            autostart = call == "LifecycleNode" and action.get("autostart") is True
+            started = "launch_ros" if call == "LifecycleNode" and action.get("autostart") is True else None
+            params = [entry for p in action.get("parameters", [])
+                      for entry in (p.items() if isinstance(p, dict) else [p])]
             nodes.append(_node(action["package"], action["executable"], action.get("name"), action.get("namespace"),
-                               action.get("parameters", []), autostart, action.get("condition")))
+                               params, started, action.get("condition")))
         elif call == "ComposableNodeContainer":
             loaded = [{"pkg": d["package"], "plugin": d["plugin"], "name": d.get("name"),
                        "params": tuple(entry for p in d.get("parameters", [])
-                                       for entry in (p.items() if isinstance(p, dict) else [p]))}
+                                       for entry in (p.items() if isinstance(p, dict) else [p])),
+                       "extra": tuple(entry for e in d.get("extra_arguments", []) for entry in e.items())}
                       for d in action["composable_node_descriptions"]]
             containers.append({"pkg": action["package"], "exec": action["executable"], "name": action["name"],
                                "namespace": action.get("namespace"), "condition": action.get("condition"),
@@ -238,9 +233,10 @@ def read_python(text: str) -> dict:
 READERS = {".xml": read_xml, ".yaml": read_yaml, ".py": read_python}
 
 
-def description(path: Path) -> dict:
-    """The launch file, whatever its format, as one description (asserting it uses launch as documented)."""
-    return READERS[path.suffix](path.read_text(encoding="utf-8"))
+def description(path: Path, distro: str) -> dict:
+    """The launch file, whatever its format, as one description (asserting it uses only what every
+    release of the distro's launch and launch_ros reads)."""
+    return READERS[path.suffix](path.read_text(encoding="utf-8"), distro)
 
 
 def expected_description(package) -> dict:
@@ -250,12 +246,12 @@ def expected_description(package) -> dict:
     args = ({"container": "false", "container_executable": "component_container"} if components else {})
     config = f"$(find-pkg-share {package.name})/config"
     nodes = [_node(package.name, node.name, node.name, "" if node.autostart else None,
-                   [f"{config}/{node.name}.yaml"], node.autostart,
+                   [f"{config}/{node.name}.yaml"], package.autostart_form if node.autostart else None,
                    ("unless", "$(var container)") if node.component else None) for node in package.nodes]
     containers = [{"pkg": "rclcpp_components", "exec": "$(var container_executable)",
                    "name": f"{package.name}_container", "namespace": "", "condition": container_condition,
                    "nodes": [{"pkg": package.name, "plugin": f"{package.name}::{node.class_name}", "name": node.name,
-                              "params": (f"{config}/{node.name}.yaml",
-                                         *([("autostart", True)] if node.autostart else []))}
+                              "params": (f"{config}/{node.name}.yaml", *([AUTOSTART] if node.autostart else [])),
+                              "extra": (("use_intra_process_comms", True),) if package.intra_process(node) else ()}
                              for node in components]}]
     return _description(args, nodes, containers if components else [])

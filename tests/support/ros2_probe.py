@@ -17,6 +17,12 @@ Run with the ROS venv's Python (the test process itself has no rclpy):
                                                /decoy, print "decoys up", run until killed
   ros2_probe.py sees NODE                      print "seen" once another process's NODE is in
                                                the graph
+  ros2_probe.py goal_result ACTION             send a test_msgs/Fibonacci goal, print "executing"
+                                               at its first feedback, then its result as JSON
+  ros2_probe.py gating NODE SERVICE ACTION     drive a lifecycle node: while inactive, is the
+                                               std_srvs/Trigger SERVICE offered, a Fibonacci goal
+                                               accepted; once active, the same; then a goal
+                                               running as the node is deactivated; print JSON
 Exits non-zero when the node does not answer.
 """
 
@@ -202,14 +208,65 @@ def sees(node, target, _):
     print("seen", flush=True)
 
 
+def _spin_until(node, future, within=TIMEOUT):
+    deadline = time.monotonic() + within
+    while not future.done() and time.monotonic() < deadline:
+        rclpy.spin_once(node, timeout_sec=0.01)
+    if not future.done():
+        sys.exit(f"no answer within {within} s")
+    return future.result()
+
+
+def goal_result(node, action, _):
+    client = ActionClient(node, Fibonacci, action)
+    if not client.wait_for_server(timeout_sec=TIMEOUT):
+        sys.exit(f"{action} is not available")
+    fed = []
+    goal = _spin_until(node, client.send_goal_async(Fibonacci.Goal(order=5), feedback_callback=fed.append))
+    if not goal.accepted:
+        sys.exit("the goal was rejected")
+    result = goal.get_result_async()
+    deadline = time.monotonic() + TIMEOUT
+    while not fed and time.monotonic() < deadline:
+        rclpy.spin_once(node, timeout_sec=0.01)
+    print("executing", flush=True)
+    since = time.monotonic()
+    status = _spin_until(node, result).status
+    print(json.dumps({"status": status, "seconds": time.monotonic() - since}), flush=True)
+
+
+def gating(node, target, names):
+    service, action = names
+    trigger = node.create_client(Trigger, service)
+    client = ActionClient(node, Fibonacci, action)
+
+    def goal_accepted():
+        if not client.wait_for_server(timeout_sec=TIMEOUT):
+            sys.exit(f"{action} is not available")
+        return _spin_until(node, client.send_goal_async(Fibonacci.Goal(order=5)))
+
+    lifecycle(node, target, ["configure"])
+    inactive = {"service_offered": trigger.wait_for_service(timeout_sec=2.0),
+                "goal_accepted": goal_accepted().accepted}
+    lifecycle(node, target, ["activate"])
+    active = {"service_offered": trigger.wait_for_service(timeout_sec=TIMEOUT)}
+    active["service_answered"] = _spin_until(node, trigger.call_async(Trigger.Request())) is not None
+    running = goal_accepted()
+    active["goal_accepted"] = running.accepted
+    result = running.get_result_async()
+    lifecycle(node, target, ["deactivate"])
+    deactivated = {"running_goal_status": _spin_until(node, result).status}
+    print(json.dumps({"inactive": inactive, "active": active, "deactivated": deactivated}), flush=True)
+
+
 def main():
     command, target, *rest = sys.argv[1:]
     rclpy.init()
     node = rclpy.create_node("rna_test_probe")
     try:
         {"params": params, "set": set_parameters, "set_atomically": set_parameters_atomically, "trigger": trigger,
-         "lifecycle": lifecycle, "busy_goal": busy_goal,
-         "transitions": transitions, "decoy": decoy, "sees": sees}[command](node, target, rest)
+         "lifecycle": lifecycle, "busy_goal": busy_goal, "transitions": transitions, "decoy": decoy, "sees": sees,
+         "goal_result": goal_result, "gating": gating}[command](node, target, rest)
     finally:
         node.destroy_node()
         rclpy.try_shutdown()

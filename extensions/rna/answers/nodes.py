@@ -368,8 +368,6 @@ def parse_node(item: object, *, package: str, build_type: str, types: Types) -> 
             raise ValueError("components are C++ nodes (rclcpp_components)")
         if flags["autostart"] and not flags["lifecycle"]:
             raise ValueError("autostart is for lifecycle nodes: set lifecycle: true as well")
-        if flags["autostart"] and distros.autostart_error(types.distro):
-            raise ValueError(distros.autostart_error(types.distro))
         description = item.get("description") or ""
         if description and names.one_line_error(description):
             raise ValueError(f"description: {names.one_line_error(description)}")
@@ -436,7 +434,7 @@ def _check_node_names(node: Node) -> None:
     _check_unique((t.topic, t.label) for t in node.subscribers)
     _check_unique((s.name, s.label) for s in node.service_servers + node.service_clients)
     _check_unique((a.name, a.label) for a in node.actions)
-    reserved = ([(AUTOSTART_PARAMETER, "the parameter a lifecycle component starts itself by")]
+    reserved = ([(AUTOSTART_PARAMETER, "the parameter a lifecycle node starts itself by")]
                 if node.starts_itself else [])
     _check_unique([*reserved, *((p.name, f"parameter '{p.name}'") for p in node.parameters)])
     _check_unique((e.member, e.label) for e in node.endpoints)

@@ -15,8 +15,8 @@ _SCALARS = {"bool": "bool", "int": "int64_t", "double": "double", "string": "std
 # Starter code's values for a std_msgs `data` field, changing with a counter.
 _SAMPLES = {
     "string": '"Hello World: " + std::to_string({count})',
-    "int": "static_cast<decltype({msg}.data)>({count})",
-    "float": "static_cast<decltype({msg}.data)>({count})",
+    "int": "static_cast<decltype({field})>({count})",
+    "float": "static_cast<decltype({field})>({count})",
     "bool": "{count} % 2 == 0",
 }
 
@@ -200,9 +200,10 @@ class CppDialect:
         return include_block([own, *self._needs("user"), *self._starter_headers()])
 
     @staticmethod
-    def sample(data_field: str, count: str, msg: str = "msg") -> str:
-        """A C++ expression giving a std_msgs `data` field a value that changes with `count`."""
-        return _SAMPLES[data_field].format(count=count, msg=msg)
+    def sample(data_field: str, count: str, field: str = "msg.data") -> str:
+        """A C++ expression giving a std_msgs `data` field (`field`, as the code reaches it) a value
+        that changes with `count`."""
+        return _SAMPLES[data_field].format(count=count, field=field)
 
     @staticmethod
     def format(data_field: str) -> str:
