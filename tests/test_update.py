@@ -461,7 +461,7 @@ def test_parameter_rules_added_then_changed(project, flavor_name):
         assert config_values(destination, flavor, "driver") == {"gain": 1.0, "frame_id": "base_link",
                                                                 "max_speed": 0.8}
         assert f"# Proportional gain (0.0 to {high})\n" in text, text
-        assert f"# one of: {', '.join(allowed)}; not empty\n" in text, text
+        assert f"# One of: {', '.join(allowed)}; not empty\n" in text, text
         assert f"# 0.0 to {speed}\n" in text, text
         # the header's 3 lines and one above each parameter, none left behind
         assert sum(line.lstrip().startswith("#") for line in text.splitlines()) == 3 + 3, text

@@ -227,7 +227,7 @@ def comment(parameter: Parameter, ros: int) -> str:
     """The config file's comment line above a parameter: its description, then its rules."""
     said = "; ".join(rules(parameter, ros))
     if not parameter.description:
-        return said
+        return said[:1].upper() + said[1:]
     return f"{parameter.description} ({said})" if said else parameter.description
 
 
