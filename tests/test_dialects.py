@@ -394,3 +394,18 @@ def test_cpp_checks_read_as_the_rule():
         "values.p.size() < 1 || values.p.size() > 3")
     assert spell.check(_parameter("int[]", [1], length=(0, 3)), "length", "values.p") == "values.p.size() > 3"
     assert spell.check(_parameter("string", "a", not_empty=True), "not_empty", "values.p") == "values.p.empty()"
+
+
+def test_a_value_read_from_a_config_file_is_refused_with_the_reason_its_node_gives():
+    from rna.parameters import refusal
+
+    stepped = _parameter("int", 5, range=(0, 100, 5))
+    assert refusal(stepped, 7, 2) == "p must be from 0 to 100 in steps of 5"  # rclcpp refuses it too
+    assert refusal(stepped, 7, 1) is None and refusal(stepped, 101, 1) == "p must be from 0 to 100"
+    assert refusal(stepped, "x", 2) and refusal(stepped, "x", 1)
+    names = _parameter("string[]", ["a"], one_of=("a", "b"), length=(1, 2))
+    assert refusal(names, ["a", "c"], 2) == "each value of p must be one of: a, b"
+    assert refusal(names, ["a", "b", "a"], 2) == "p must have 1 to 2 values"
+    assert refusal(names, "a", 1) == "each value of p must be one of: a, b"
+    assert refusal(names, ["b"], 2) is None
+    assert refusal(_parameter("string", "a", not_empty=True), "", 2) == "p must not be empty"

@@ -471,6 +471,15 @@ def test_parameter_rules_added_then_changed(project, flavor_name):
         assert f"frame_id must be one of: {', '.join(allowed)}" in base, base
         assert "frame_id must not be empty" in base, base
 
+    # Bounds that leave out the value the user tuned: kept, and the summary says the node would stop.
+    find_node(nodes, "driver")["parameters"][2]["range"] = [0.0, 0.5]
+    result = run_update(destination, {"nodes": nodes})
+    assert_clean_update(result, destination)
+    assert config_values(destination, flavor, "driver")["max_speed"] == 0.8
+    said = " ".join(result.stdout.split())
+    assert ("max_speed is 0.8 there, but max_speed must be from 0.0 to 0.5: the node would stop as it starts; "
+            "change the value or the rule.") in said, result
+
 
 # ─── Removing nodes ───────────────────────────────────────────────────────────
 

@@ -251,3 +251,23 @@ def checks(parameter: Parameter, ros: int) -> tuple[tuple[str, str], ...]:
     if parameter.not_empty:
         found.append(("not_empty", f"{name} must not be empty"))
     return tuple(found)
+
+
+def refusal(parameter: Parameter, value: object, ros: int) -> str | None:
+    """Why a node refuses `value` for `parameter` as it starts (the reasons of `checks`; ROS 2's
+    range as rclcpp and rclpy check it, steps included), or None. For a value read from a config file."""
+    if parameter.range and ros == 2:
+        low, high, step = parameter.range
+        number = isinstance(value, (int, float)) and not isinstance(value, bool)
+        if not number or not low <= value <= high or not on_step(value, low, high, step, parameter.type.scalar):
+            return f"{parameter.name} must be from {range_text(parameter, ros)}"
+    items = value if isinstance(value, list) else None
+    broken = {
+        "range": lambda: not isinstance(value, (int, float)) or not parameter.range[0] <= value <= parameter.range[1],
+        "one_of": lambda: value not in parameter.one_of,
+        "each_one_of": lambda: items is None or any(item not in parameter.one_of for item in items),
+        "length": lambda: items is None or len(items) < parameter.length[0] or (
+            parameter.length[1] is not None and len(items) > parameter.length[1]),
+        "not_empty": lambda: value == "",
+    }
+    return next((reason for rule, reason in checks(parameter, ros) if broken[rule]()), None)

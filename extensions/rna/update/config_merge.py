@@ -30,6 +30,7 @@ import yaml
 
 from ..configs import yaml_entry, yaml_literal
 from ..model import Package
+from ..parameters import refusal
 from .project import Project, Render
 from .summary import Report
 
@@ -259,12 +260,29 @@ def write_merged(project: Project, path: str, merged: Merged) -> None:
             rejected.unlink()
 
 
-def descriptions_of(package: Package | None, path: str) -> dict:
+def _node_of(package: Package | None, path: str):
     match = CONFIG.search(path)
     if package is None or match is None:
-        return {}
-    node = next((node for node in package.nodes if node.name == match["node"]), None)
+        return None
+    return next((node for node in package.nodes if node.name == match["node"]), None)
+
+
+def descriptions_of(package: Package | None, path: str) -> dict:
+    node = _node_of(package, path)
     return {p.name: node.parameter_comment(p) for p in node.parameters if node.parameter_comment(p)} if node else {}
+
+
+def refused_values(package: Package | None, path: str, text: str) -> list[str]:
+    """A note for each value of a merged config file that the node's new rules refuse: the node
+    would stop as it starts, so the user changes the value or the rule."""
+    node, values = _node_of(package, path), parameters(text) or {}
+    notes = []
+    for parameter in node.parameters if node else ():
+        reason = parameter.name in values and refusal(parameter, values[parameter.name], node.ros)
+        if reason:
+            notes.append(f"{path}: {parameter.name} is {yaml_literal(values[parameter.name])} there, but {reason}: "
+                         "the node would stop as it starts; change the value or the rule.")
+    return notes
 
 
 def merge_config_files(project: Project, old: Render, new: Render, packages: tuple[Package | None, Package | None],
@@ -285,3 +303,4 @@ def merge_config_files(project: Project, old: Render, new: Render, packages: tup
         for name, (yours, theirs) in merged.conflicts.items():
             report.notes.append(f"{path}: you tuned {name} to {yaml_literal(yours)} and its default is now "
                                 f"{yaml_literal(theirs)}: keep one.")
+        report.notes.extend(refused_values(packages[1], path, merged.text))
