@@ -378,7 +378,10 @@ def _one_of(draw, scalar: str, used: list, value_range, ros: int):
         return None
     if value_range is not None:
         bounds = [value_range["min"], value_range["max"]] if isinstance(value_range, dict) else value_range[:2]
-        others = st.sampled_from(bounds)
+        # A range's bounds may lie beyond what ROS 1's parameter server holds; an allowed value may not.
+        low, high = INT_RANGES[ros]
+        bounds = [bound for bound in bounds if scalar == "double" or low <= bound <= high]
+        others = st.sampled_from(bounds) if bounds else st.nothing()
     else:
         others = {"int": _ints(ros), "double": DOUBLES, "string": st.one_of(st.just(""), one_line_text(40))}[scalar]
     allowed = []
