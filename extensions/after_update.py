@@ -24,7 +24,7 @@ import code_cache  # noqa: E402 - next to this file
 code_cache.import_from(HERE)
 with code_cache.dataclass_methods_kept():
     from rna import Package, build_package  # the template's own package, next to this file
-    from rna.update import blocks, config_merge, drift, kept, merge, protect, rename_answers, renames
+    from rna.update import blocks, config_merge, drift, kept, merge, port, protect, rename_answers, renames
     from rna.update.project import Project, Render, render
     from rna.update.summary import Report, changes, summary
 
@@ -81,16 +81,20 @@ def main(answers_file: str, project_root: Path | None = None, template: Path = H
         new = render_of("new", new_answers, renders, template, scratch)
         packages = (package_of(old_answers, report), package_of(new_answers, report))
         handled = set()
-        if None not in packages:
+        ported = port.porting(packages)  # ROS 1 -> ROS 2: the port carries every file of the user's
+        if None not in packages and not ported:
             handled |= renames.carry_renamed_package(project, old, new, packages, report)
             handled |= renames.carry_renamed_nodes(project, old, new, packages, renamed, report)
+        if ported:
+            handled |= port.port_package(project, old, new, packages, report, renamed)
         protect.keep_edited_files(project, old, new, packages, report, skip=handled)
         if None not in packages:
             user_files = set(packages[0].user_files) | set(packages[1].user_files)
             protect.refresh_untouched_starters(project, old, new, user_files, report)
-            drift.port_edited_user_files(project, old, new, packages, report, renamed)
+            if not ported:
+                drift.port_edited_user_files(project, old, new, packages, report, renamed)
         merge.settle_conflicts(project, old, new, report, skip=config_merge.CONFIG, handled=handled)
-        config_merge.merge_config_files(project, old, new, packages, report)
+        config_merge.merge_config_files(project, old, new, packages, report, skip=handled)
         blocks.leave_out_user_declarations(project, new, report)
         blocks.dropped_but_used(project, old, report)
         blocks.unreadable_package_xml(project, report)

@@ -239,6 +239,15 @@ def package_files() -> str:
     return "\n".join("/" + path for path in rna.layout.PACKAGE_FILES)
 
 
+@pass_context
+def porting_from_ros1(context) -> bool:
+    """Whether this update ports a ROS 1 package to ROS 2 (the build type then defaults to
+    ament_cmake, which holds C++ and Python nodes alike, as catkin did)."""
+    previous = _previous_answers(context)
+    return (previous is not None and rna.distros.generation(previous.get("ros_distro")) == 1
+            and rna.distros.generation(context.get("ros_distro")) == 2)
+
+
 def lab() -> dict:
     """The lab's choices (extensions/lab.yml), for defaults in copier.yml; a broken file is one line."""
     try:
@@ -318,6 +327,7 @@ class RnaExtension(ContextHook):
             default_description=default_description, default_nodes=default_nodes,
             nodes_dialog=nodes_dialog, nodes_dialog_pending=nodes_dialog_pending,
             existing_package=existing_package, found_interfaces=found_interfaces, git_config=git_config,
+            porting_from_ros1=porting_from_ros1,
             in_git_work_tree=in_git_work_tree, lab=lab, docs_url=rna.lab.docs_url,
             login_name=getpass.getuser,
             package_files=package_files,
@@ -654,8 +664,10 @@ def _operation() -> str | None:
     return operation.get(None)
 
 
-def _refuse_switch(previous: Mapping, answers: Mapping) -> None:
+def _refuse_switch(previous: Mapping, answers: Mapping, destination: object = None) -> None:
     refused = rna.update.refusals.switch_error(previous, answers)
+    if refused is None and destination is not None:
+        refused = rna.update.refusals.port_error(previous, answers, rna.workspace.read_package(Path(destination)))
     if refused is not None:
         raise UserMessageError(f"rna-template: {refused}")
 
@@ -768,7 +780,7 @@ def _check_given_answers(context) -> None:
     given = conf.get("data") or {}
     previous = _previous_answers(context) if "ros_distro" in given else None
     if previous is not None:  # before any other answer is read in the light of the new distro
-        _refuse_switch(previous, given)
+        _refuse_switch(previous, given, conf.get("dst_path"))
     if not given or any(given is checked for checked in _checked):
         return
     _checked.append(given)

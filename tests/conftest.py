@@ -59,7 +59,8 @@ settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci" if os.environ.ge
 # own, so the tests that use one are kept on one worker (`--dist loadgroup`, as .ci/run
 # runs; other tests go wherever a worker is free). `workspaces` builds one per ROS 2
 # distro: a distro's tests are a group, so two distros can build at once.
-SHARED_BUILDS = ("workspaces", "catkin_ws", "example_packages", "colcon_tested", "catkin_tested")
+SHARED_BUILDS = ("workspaces", "catkin_ws", "example_packages", "colcon_tested", "catkin_tested",
+                 "ported_examples")
 
 
 def build_group(item) -> str | None:

@@ -57,7 +57,7 @@ def test_fields_are_written_back_normalised(text, line):
         ("int32[<=5] few", 1, "ROS 2 features"),
         ("float64 x 1.0", 1, "default values are a ROS 2 feature"),
         ("wstring w", 1, "not a ROS 1 primitive"),
-        ("time stamp", 2, "not a ROS 2 primitive"),
+        ("time MAX=3", 2, "constants have a primitive, non-array type"),
         ("float64! x", 2, "is not a type"),
         ("int32[] ids [1, 2", 2, "cannot read the value"),
         ("geometry_msgs/Point p 1", 2, "only primitive types take a value"),
@@ -71,6 +71,14 @@ def test_field_rules(text, ros, rule):
 def test_ros1_header_and_time_are_understood():
     assert field("Header header", 1).package == "std_msgs"
     assert field("time stamp", 1).line == "time stamp"
+
+
+def test_ros1_spellings_are_ros2_messages_on_ros2():
+    """Answers written for ROS 1 stay valid when the package is ported (copier update -d ros_distro=...)."""
+    assert field("Header header", 2).line == "std_msgs/Header header"
+    assert field("time stamp", 2).line == "builtin_interfaces/Time stamp"
+    assert field("duration[] waits", 2).line == "builtin_interfaces/Duration[] waits"
+    assert field("time stamp", 2).package == "builtin_interfaces"
 
 
 @pytest.mark.parametrize(

@@ -64,4 +64,6 @@ def test_each_distros_workspace_is_a_group_of_its_own():
     assert conftest.build_group(item(["workspace", "workspaces"], workspace="jazzy")) == "test_ros2:workspaces:jazzy"
     assert conftest.build_group(item(["workspace", "workspaces"])) == "test_ros2:workspaces:kilted"
     assert conftest.build_group(item(["catkin_ws"])) == "test_ros2:catkin_ws"
+    # the port's examples, built for ROS 1 and ported for ROS 2, once (tests/test_port_ros.py)
+    assert conftest.build_group(item(["ros1", "ros2", "ported_examples"])) == "test_ros2:ported_examples"
     assert conftest.build_group(item(["tmp_path"])) is None

@@ -177,16 +177,27 @@ def test_real_conflicts_stay_marked():
     assert merge.merge3("a\nmine\nb\n", "a\nold\nb\n", "a\nb\n")[1]
 
 
-def test_a_switch_of_ros_generation_is_refused_with_what_to_do():
+def test_ros2_to_ros1_is_refused_in_one_line_and_ros1_to_ros2_is_a_port():
     ros2 = {"ros_distro": "jazzy", "build_type": "ament_cmake"}
-    error = refusals.switch_error({"ros_distro": "noetic"}, ros2)
+    error = refusals.switch_error(ros2, {"ros_distro": "noetic"})
     assert error is not None and error.question == "ros_distro"
-    assert "ROS 1" in str(error) and "ROS 2" in str(error) and "copier copy" in str(error)
+    assert "ROS 1" in str(error) and "ROS 2" in str(error) and "Keep ros_distro jazzy" in str(error)
     assert "nothing was written" in str(error) and "\n" not in str(error)
-    assert refusals.switch_error(ros2, {"ros_distro": "noetic"}).question == "ros_distro"
+    assert refusals.switch_error({"ros_distro": "noetic"}, ros2) is None  # a port (rna/update/port.py)
     assert refusals.switch_error(ros2, {**ros2, "ros_distro": "humble"}) is None  # another ROS 2 distro
     assert refusals.switch_error(ros2, {**ros2, "build_type": "ament_python"}) is None  # a conversion the update makes
     assert refusals.switch_error({}, ros2) is None and refusals.switch_error({"ros_distro": None}, ros2) is None
+
+
+def test_a_node_is_ported_only_once_the_package_around_it_is_ros2():
+    node = {"ros_distro": "noetic", "target": "node"}
+    error = refusals.port_error(node, {"ros_distro": "kilted"}, {"build_type": "catkin"})
+    assert error is not None and error.question == "ros_distro" and "\n" not in str(error)
+    assert "package.xml" in str(error) and "nothing was written" in str(error)
+    assert refusals.port_error(node, {"ros_distro": "kilted"}, {"build_type": "ament_cmake"}) is None
+    package = {**node, "target": "package"}
+    assert refusals.port_error(package, {"ros_distro": "kilted"}, {"build_type": "catkin"}) is None
+    assert refusals.port_error(node, {"ros_distro": "noetic"}, {"build_type": "catkin"}) is None
 
 
 ANSWERS_TEXT = ("# Written by Copier: change answers with `copier update`, never by hand (see README.md).\n"

@@ -18,6 +18,7 @@ ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "extensions"))
 
 from rna import lab, schema  # noqa: E402 - the template's own package
+from rna.port import rules as port_rules  # noqa: E402
 
 _JINJA = re.compile(r"\{\{.*?\}\}|\{%.*?%\}", re.S)
 # A help's link to a page of this site, shown as its address.
@@ -97,6 +98,19 @@ def node_keys_table() -> str:
     return "\n".join(rows)
 
 
+def port_rules_table() -> str:
+    """The port's rule table (rna.port.rules, the one the rewriters name), one table per language."""
+    parts = []
+    for language in dict.fromkeys(rule.language for rule in port_rules.RULES):
+        rows = [f"### {language}", "", "| ROS 1 | ROS 2 | Note | Rule |", "| --- | --- | --- | --- |"]
+        for rule in (rule for rule in port_rules.RULES if rule.language == language):
+            ros2 = f"TODO(port): {_cell(rule.ros2)}" if rule.todo else f"`{_cell(rule.ros2)}`"
+            rows.append(f"| `{_cell(rule.ros1)}` | {ros2} | {_cell(rule.note)} | `{rule.key}` |")
+        parts.append("\n".join(rows))
+    return "\n\n".join(parts)
+
+
 def on_page_markdown(markdown, page, config, files):
     return (markdown.replace("<!-- rna: questions -->", questions_table())
-            .replace("<!-- rna: node keys -->", node_keys_table()))
+            .replace("<!-- rna: node keys -->", node_keys_table())
+            .replace("<!-- rna: port rules -->", port_rules_table()))

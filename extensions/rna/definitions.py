@@ -20,6 +20,10 @@ PRIMITIVES = {
     1: ("bool", "byte", "char", "float32", "float64", "int8", "uint8", "int16", "uint16", "int32",
         "uint32", "int64", "uint64", "string", "time", "duration"),
 }
+# ROS 1 spellings ROS 2 writes as a message of another package: `Header header` is
+# `std_msgs/Header header`, the time and duration primitives are builtin_interfaces' messages.
+ROS1_SPELLINGS = {"Header": "std_msgs/Header", "time": "builtin_interfaces/Time",
+                  "duration": "builtin_interfaces/Duration"}
 _INTEGER_RANGES = {
     "int8": (-2**7, 2**7 - 1), "uint8": (0, 2**8 - 1), "int16": (-2**15, 2**15 - 1), "uint16": (0, 2**16 - 1),
     "int32": (-2**31, 2**31 - 1), "uint32": (0, 2**32 - 1), "int64": (-2**63, 2**63 - 1),
@@ -137,6 +141,8 @@ def parse_field(text: object, *, package: str, local_names: set[str], ros: int) 
     elif base not in PRIMITIVES[ros]:
         if base == "Header" and ros == 1:
             other_package, base = "std_msgs", "Header"
+        elif base in ROS1_SPELLINGS and ros == 2:  # ROS 1's names, kept by a package ported to ROS 2
+            other_package, base = ROS1_SPELLINGS[base].split("/")[0], ROS1_SPELLINGS[base]
         elif not is_camel_case(base):
             raise ValueError(f"{what}: '{base}' is not a ROS {ros} primitive type or a CamelCase message")
         elif base not in local_names:

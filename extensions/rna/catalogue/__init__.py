@@ -34,13 +34,37 @@ def known_types(package: str, distro: str) -> dict[str, list[str]] | None:
     return catalogue["packages"].get(package) if catalogue else None
 
 
+ROS1_CATALOGUE = "noetic"
+# ROS 1 packages of interface types that ROS 2 does not have, and what it has instead.
+ROS1_TYPE_PACKAGES = {
+    "actionlib_msgs": "action_msgs",
+    "actionlib": "test_msgs, whose test_msgs/action/Fibonacci is ROS 2's test action",
+    "tf": "tf2_msgs",
+    "roscpp": "rcl_interfaces",
+    "rosgraph_msgs": "rosgraph_msgs (Clock only; Log is rcl_interfaces/msg/Log)",
+}
+
+
+def _ros1_package_error(package: str, kind: str, name: str, distro: str) -> str | None:
+    """Why a type of a ROS 1 package (catalogued for ROS 1, not for this ROS 2 distro) does not exist there."""
+    if generation(distro) == 1 or load(distro) is None or package == "rosgraph_msgs":
+        return None
+    if package not in ROS1_TYPE_PACKAGES and known_types(package, ROS1_CATALOGUE) is None:
+        return None
+    given = InterfaceType(package, kind, name, generation(distro)).full_name
+    instead = f": ROS 2 has {ROS1_TYPE_PACKAGES[package]}" if package in ROS1_TYPE_PACKAGES else ""
+    return f"'{given}': {package} is a ROS 1 package, which {distro} does not have{instead}"
+
+
 def unknown_type_error(package: str, kind: str, name: str, distro: str) -> str | None:
     """Why `package/kind/name` does not exist in `distro`, or None when it does or cannot be told.
 
     A type named under another kind is said so; a misspelt one gets the closest name.
     """
     types = known_types(package, distro)
-    if types is None or name in types[kind]:
+    if types is None:
+        return _ros1_package_error(package, kind, name, distro)
+    if name in types[kind]:
         return None
     # Rolling moves on faster than its catalogue: a type the released distros have stays allowed.
     if distro == "rolling" and any(name in (known_types(package, released) or {}).get(kind, ())

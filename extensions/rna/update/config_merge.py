@@ -286,9 +286,10 @@ def refused_values(package: Package | None, path: str, text: str) -> list[str]:
 
 
 def merge_config_files(project: Project, old: Render, new: Render, packages: tuple[Package | None, Package | None],
-                       report: Report) -> None:
-    """Each config file both the user and the template changed, merged by parameter in the user's text."""
-    for path in sorted(p for p in new.files if CONFIG.search(p)):
+                       report: Report, skip: set[str] = frozenset()) -> None:
+    """Each config file both the user and the template changed, merged by parameter in the user's text
+    (`skip`: merged by an earlier step)."""
+    for path in sorted(p for p in new.files if CONFIG.search(p) and p not in skip):
         before, generated = project.committed(path), old.text(path)
         if before is None or generated is None or before == generated or new.text(path) == generated:
             continue

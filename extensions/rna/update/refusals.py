@@ -13,25 +13,36 @@ from pathlib import Path
 from .. import distros
 from ..answers import AnswerError
 
-GENERATIONS = {1: "ROS 1", 2: "ROS 2"}
-
-
 def switch_error(previous: Mapping, answers: Mapping) -> AnswerError | None:
-    """A change between ROS 1 and ROS 2, which no update can make.
+    """A change from ROS 2 back to ROS 1, which no update makes.
 
-    The two generations differ in every file (layout, client library, launch format, build
-    system): converting a package the user wrote code in would leave it half ROS 1, half
-    ROS 2. A build type change within ROS 2 is not refused: the update makes it (the user's
-    node files stay, an edited build file is kept and named).
+    ROS 1 -> ROS 2 is a port (rna/update/port.py): the template's files are made for ROS 2
+    and the user's code is carried over by documented rules. The other way round there is
+    nothing to port to: ROS 1 reached its end of life. A build type change within ROS 2 is
+    not refused either: the update makes it.
     """
     before, after = previous.get("ros_distro"), answers.get("ros_distro")
-    if not before or not after or distros.generation(before) == distros.generation(after):
+    if not before or not after or distros.generation(before) <= distros.generation(after):
         return None
-    old, new = GENERATIONS[distros.generation(before)], GENERATIONS[distros.generation(after)]
     return AnswerError("ros_distro", (
-        f"{after} is {new} and this package is {old} ({before}): an update cannot move a package "
-        f"between ROS 1 and ROS 2 (nothing was written). Keep ros_distro {before}, or generate a "
-        f"{new} package beside this one (copier copy) and move your code into it"))
+        f"{after} is ROS 1 and this package is ROS 2 ({before}): an update ports ROS 1 to ROS 2, never back "
+        f"(nothing was written). Keep ros_distro {before}"))
+
+
+def port_error(previous: Mapping, answers: Mapping, package_xml: Mapping | None) -> AnswerError | None:
+    """A node the template added to a package it did not make, ported while that package is catkin's.
+
+    The package's own package.xml and CMakeLists.txt are the user's: the port carries the
+    node's files and replaces the node's lines in them, so they must be ROS 2's already.
+    """
+    if previous.get("target") != "node" or distros.generation(previous.get("ros_distro")) != 1:
+        return None
+    if distros.generation(answers.get("ros_distro")) != 2 or (package_xml or {}).get("build_type") != "catkin":
+        return None
+    return AnswerError("ros_distro", (
+        "the package this node was added to is still a catkin package (its package.xml): its package.xml and "
+        "CMakeLists.txt are yours, so port them to ROS 2 (ament_cmake) first, then run this update to port the "
+        "node (nothing was written)"))
 
 
 def hand_edit_error(answers_file: str) -> str:

@@ -14,6 +14,16 @@ from dataclasses import dataclass, field
 WIDTH = 80
 
 
+@dataclass(frozen=True)
+class Ported:
+    """A file of the user's ported to ROS 2: where it is (and was), each rewrite, the TODO(port) lines left."""
+
+    path: str
+    was: str | None
+    rewrites: tuple[str, ...]  # `line N: before -> after`, N a line of the ROS 1 file
+    todos: int
+
+
 @dataclass
 class Report:
     renamed: list[tuple[str, str]] = field(default_factory=list)  # (old path, new path)
@@ -23,10 +33,15 @@ class Report:
     problems: list[str] = field(default_factory=list)  # other things the user must do, one line each
     notes: list[str] = field(default_factory=list)  # said, nothing to do
     merged: set[str] = field(default_factory=set)  # files this step merged itself
+    ported: list[Ported] = field(default_factory=list)  # files a port to ROS 2 rewrote (rna/update/port.py)
+
+    @property
+    def todos(self) -> int:
+        return sum(item.todos for item in self.ported)
 
     @property
     def failed(self) -> bool:
-        return bool(self.kept or self.to_port or self.conflicts or self.problems)
+        return bool(self.kept or self.to_port or self.conflicts or self.problems or self.todos)
 
 
 @dataclass(frozen=True)
@@ -62,6 +77,24 @@ def _item_lines(path: str, why: str) -> list[str]:
                          break_long_words=False)
 
 
+def _ported_lines(ported: list[Ported]) -> list[str]:
+    """The files a port to ROS 2 rewrote: each rewrite, and the TODO(port) lines left in each."""
+    rewrites, todos = sum(len(item.rewrites) for item in ported), sum(item.todos for item in ported)
+    lines = [f"  ported to ROS 2 ({rewrites} rewrite{'s' * (rewrites != 1)}, {todos} line{'s' * (todos != 1)} "
+             f"left marked TODO(port)):"]
+    for item in ported:
+        where = f"{item.path} (was {item.was})" if item.was and item.was != item.path else item.path
+        counted = [f"{len(item.rewrites)} rewrite{'s' * (len(item.rewrites) != 1)}" if item.rewrites
+                   else "your lines carried as written"]
+        if item.todos:
+            counted.append(f"{item.todos} TODO(port)")
+        lines += _item_lines(where, ", ".join(counted))
+        for rewrite in item.rewrites:
+            lines += textwrap.wrap(rewrite, WIDTH, initial_indent=" " * 6, subsequent_indent=" " * 8,
+                                   break_on_hyphens=False, break_long_words=False)
+    return lines
+
+
 def summary(report: Report, change: Changes, versions: str) -> str:
     """The text printed at the end of every update."""
     lines = [f"rna-template: what this update changed ({versions})"]
@@ -82,6 +115,8 @@ def summary(report: Report, change: Changes, versions: str) -> str:
         lines.append("  to port (the template changed what your code builds on):")
         for path, why in report.to_port:
             lines += _item_lines(path, why)
+    if report.ported:
+        lines += _ported_lines(report.ported)
     if report.conflicts:
         lines.append("  conflicts (resolve the '<<<<<<< before updating' blocks or .rej files):")
         lines += [f"    {path}" for path in report.conflicts]
