@@ -17,10 +17,9 @@ from pathlib import Path
 import yaml
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-import code_cache  # noqa: E402 - next to this file
+import speedups  # noqa: E402 - next to this file
 
-code_cache.import_from(Path(__file__).resolve().parent)
-with code_cache.dataclass_methods_kept():
+with speedups.template_modules(Path(__file__).resolve().parent):
     from rna import build_package, integrate  # the template's own package, next to this file
 
 

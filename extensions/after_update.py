@@ -19,10 +19,9 @@ import yaml
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
-import code_cache  # noqa: E402 - next to this file
+import speedups  # noqa: E402 - next to this file
 
-code_cache.import_from(HERE)
-with code_cache.dataclass_methods_kept():
+with speedups.template_modules(HERE):
     from rna import Package, build_package  # the template's own package, next to this file
     from rna.update import blocks, config_merge, drift, kept, merge, port, protect, rename_answers, renames
     from rna.update.project import Project, Render, render

@@ -45,18 +45,18 @@ BROKEN = [
     (answers(nodes=[]), "nodes", "at least one node"),
     (answers(nodes="- name: [unclosed"), "nodes", "not valid YAML"),
     (answers(nodes=[{"name": "Driver"}]), "nodes", "lower_snake_case"),
-    (answers(nodes=[["driver"]]), "nodes", "each node must be a mapping"),
-    (answers(nodes=[{"language": "python"}]), "nodes", "a node name is required"),
-    (node(publishers={"topic": "chatter"}), "nodes", "publishers must be a list"),
-    (node(publishers=[["chatter", "std_msgs/msg/String"]]), "nodes", "a publisher must be 'topic:type'"),
-    (node(service_servers=[3]), "nodes", "a service server must be 'name:type'"),
+    (answers(nodes=[["driver"]]), "nodes", "write each node as a mapping"),
+    (answers(nodes=[{"language": "python"}]), "nodes", "give a node name"),
+    (node(publishers={"topic": "chatter"}), "nodes", "write publishers as a list"),
+    (node(publishers=[["chatter", "std_msgs/msg/String"]]), "nodes", "write a publisher as 'topic:type'"),
+    (node(service_servers=[3]), "nodes", "write a service server as 'name:type'"),
     (answers(nodes=[{"name": "a"}, {"name": "a"}]), "nodes", "node 'a' and node 'a' both use the name 'a'"),
     (answers(nodes=[{"name": "a", "publisher": []}]), "nodes", "did you mean 'publishers'"),
-    (node(language="rust"), "nodes", "is not cpp or python"),
+    (node(language="rust"), "nodes", "use cpp or python: language 'rust' is neither"),
     (answers(build_type="ament_python", nodes=[{"name": "a", "language": "cpp"}]), "nodes", "Python nodes only"),
     (node(component=True, language="python"), "nodes", "components are C++ nodes"),
     (node(lifecycle="yes"), "nodes", "true or false"),
-    (node(diagnostics="yes"), "nodes", "diagnostics must be true or false"),
+    (node(diagnostics="yes"), "nodes", "set diagnostics to true or false"),
     (node(diagnostics=True, timers=["diagnostics:1"]), "nodes", "the diagnostics updater"),
     (node(autostart=True), "nodes", "autostart is for lifecycle nodes"),
     (answers(ros_distro="humble", nodes=[{"name": "a", "lifecycle": True, "autostart": True,
@@ -65,8 +65,9 @@ BROKEN = [
     (node(description="two\nlines"), "nodes", "one line"),
     (node(publishers=["chatter"]), "nodes", "write it as topic:type"),
     (node(publishers=["bad topic:std_msgs/msg/String"]), "nodes", "letters, digits and '_'"),
-    (node(publishers=["chatter:std_srvs/srv/Trigger"]), "nodes", "is a service type, but a message type"),
-    (node(publishers=["chatter:std_msgs/msg/String:fast"]), "nodes", "qos must be a history depth"),
+    (node(publishers=["chatter:std_srvs/srv/Trigger"]), "nodes",
+     "give a message type here: 'std_srvs/srv/Trigger' is a service type"),
+    (node(publishers=["chatter:std_msgs/msg/String:fast"]), "nodes", "give qos as a history depth"),
     (node(publishers=[{"topic": "chatter", "type": "std_msgs/msg/String", "qos": 0}]), "nodes", "between 1 and 10000"),
     (node(publishers=["chatter:std_msgs/msg/String", "chatter:std_msgs/msg/Int32"]), "nodes",
      "both use the name 'chatter'"),
@@ -77,24 +78,26 @@ BROKEN = [
     (node(subscribers=["odom_request:nav_msgs/msg/Odometry"], service_servers=["odom:std_srvs/srv/Trigger"]),
      "nodes", "both use the name 'on_odom_request'"),
     (node(service_servers=["reset"]), "nodes", "write it as name:type"),
-    (node(service_clients=["reset:std_msgs/msg/String"]), "nodes", "is a message type, but a service type"),
-    (node(action_servers=["move:nav2_msgs/srv/Move"]), "nodes", "but an action type"),
-    (node(action_clients=[{"name": "~", "type": "test_msgs/action/Fibonacci"}]), "nodes", "no name"),
-    (node(timers=["fast"]), "nodes", "is not a number of seconds"),
-    (node(timers=[[1]]), "nodes", "a timer must be a period in seconds"),
+    (node(service_clients=["reset:std_msgs/msg/String"]), "nodes",
+     "give a service type here: 'std_msgs/msg/String' is a message type"),
+    (node(action_servers=["move:nav2_msgs/srv/Move"]), "nodes", "give an action type here"),
+    (node(action_clients=[{"name": "~", "type": "test_msgs/action/Fibonacci"}]), "nodes",
+     "give a name after its prefix"),
+    (node(timers=["fast"]), "nodes", "give the period in seconds, e.g. 0.1: 'fast' is not a number"),
+    (node(timers=[[1]]), "nodes", "write a timer as a period in seconds"),
     (node(publishers=[{"topic": "a", "type": "std_msgs/msg/String", "qos": True}]), "nodes",
-     "qos must be a history depth"),
+     "give qos as a history depth"),
     (node(timers=[0]), "nodes", "more than 0 s"),
-    (node(timers=[1e-10]), "nodes", "shorter than a nanosecond"),
+    (node(timers=[1e-10]), "nodes", "give a period of at least a nanosecond"),
     (node(timers=[{"name": "Fast", "period": 1}]), "nodes", "lower_snake_case"),
     (node(timers=[0.1, 0.2]), "nodes", "both use the name 'timer'"),
     (node(parameters=["Rate:double=1.0"]), "nodes", "lower_snake_case"),
     (node(parameters=["rate"]), "nodes", "give a type or a default"),
     (node(parameters=["rate:complex=1"]), "nodes", "is not one of"),
     (node(parameters=["rate:int=1.5"]), "nodes", "is not an int"),
-    (node(parameters=["rate:double=[1"]), "nodes", "cannot read the default"),
-    (node(parameters=[{"name": "", "default": 1}]), "nodes", "a parameter name is required"),
-    (node(parameters=[7]), "nodes", "a parameter must be 'name:type=default'"),
+    (node(parameters=["rate:double=[1"]), "nodes", "write the default as YAML"),
+    (node(parameters=[{"name": "", "default": 1}]), "nodes", "give a parameter name"),
+    (node(parameters=[7]), "nodes", "write a parameter as 'name:type=default'"),
     (node(parameters=[{"name": "rate", "type": 2}]), "nodes", "is not one of"),
     (node(parameters=[{"name": "when", "default": {"a": 1}}]), "nodes", "cannot tell the type"),
     (node(parameters=[{"name": "gains", "default": [1, "a"]}]), "nodes", "mixes types"),
@@ -104,7 +107,7 @@ BROKEN = [
     (node(parameters=[{"name": "r", "default": 1.0, "range": {"min": 0, "max": 2, "step": -1}}]), "nodes",
      "range step must not be negative"),
     (node(parameters=[{"name": "r", "default": 1.0, "range": {"mn": 0}}]), "nodes", "did you mean 'min'"),
-    (node(parameters=["gains:double[]=[]"]), "nodes", "non-empty default"),
+    (node(parameters=["gains:double[]=[]"]), "nodes", "give it a default that is not empty"),
     (node(parameters=[{"name": "r", "type": "string", "range": [0, 1]}]), "nodes", "only int and double"),
     (node(parameters=[{"name": "r", "default": 5, "range": [0, 1]}]), "nodes", "outside the range"),
     (node(parameters=[{"name": "r", "default": 0, "range": [2, 1]}]), "nodes", "above its maximum"),
@@ -200,9 +203,9 @@ BROKEN = [
         "messages": [{"name": "GoGoal", "fields": ["int32 x"]}],
         "actions": [{"name": "Go", "goal": ["int32 x"], "result": [], "feedback": []}]}), "interfaces",
      "the action 'Go'"),
-    (node(publishers=["cmd_vel:geometry_msgs/msg/Twst"]), "nodes", "did you mean Twist?"),
+    (node(publishers=["cmd_vel:geometry_msgs/msg/Twst"]), "nodes", "did you mean geometry_msgs/msg/Twist?"),
     (answers(ros_distro="noetic", build_type="catkin", nodes=[{"name": "a", "subscribers": ["x:geometry_msgs/Twst"]}]),
-     "nodes", "'geometry_msgs/Twst' is not a message of geometry_msgs in noetic (did you mean Twist?)"),
+     "nodes", "did you mean geometry_msgs/Twist? 'geometry_msgs/Twst' is not a message of geometry_msgs in noetic"),
     (node(service_servers=["get:std_srvs/srv/String"]), "nodes", "is not a service of std_srvs"),
     (answers(ros_distro="noetic", build_type="catkin", package_name="robot", nodes=[
         {"name": "robot", "language": "python"}]), "nodes", "shadow the Python module 'robot'"),
@@ -274,7 +277,7 @@ def test_a_boolean_is_spelled_the_same_way_in_short_and_long_forms(spelled):
     try:
         assert build_package(answers(nodes=lifecycle)).nodes[0].lifecycle is flag
     except AnswerError as error:
-        assert not isinstance(flag, bool) and "lifecycle must be true or false" in str(error)
+        assert not isinstance(flag, bool) and "set lifecycle to true or false" in str(error)
 
 
 def test_prompt_answers_are_comma_separated_short_forms():
@@ -376,7 +379,7 @@ def test_several_publishers_get_a_message_variable_each():
 
 def test_default_description_says_what_the_nodes_do():
     def describe_nodes(answers):
-        return Answers(answers).default_description
+        return Answers(answers).default_description()
 
     assert describe_nodes({**VALID, "nodes": [
         {"name": "talker", "publishers": ["chatter:std_msgs/msg/String"]},
@@ -384,6 +387,13 @@ def test_default_description_says_what_the_nodes_do():
         "The talker node publishes chatter; the listener node subscribes to chatter")
     assert describe_nodes({**VALID, "nodes": [{"name": f"n{i}"} for i in range(4)]}) == "Nodes n0, n1, n2 and n3"
     assert describe_nodes({**VALID, "nodes": "not: [valid"}) == "ROS nodes"
+    # At a prompt, what fits its line: a longer default would wrap mid-word.
+    three = {**VALID, "nodes": [{"name": "driver", "publishers": ["odom:nav_msgs/msg/Odometry"]},
+                                {"name": "planner", "publishers": ["cmd_vel:geometry_msgs/msg/Twist"]},
+                                {"name": "battery_monitor", "subscribers": ["odom:nav_msgs/msg/Odometry"]}]}
+    assert len(describe_nodes(three)) > 77
+    assert Answers(three).default_description(77) == "Nodes driver, planner and battery_monitor"
+    assert Answers(three).default_description(20) == "3 ROS nodes"
 
 
 def test_diagnostics_in_both_generations():
@@ -404,7 +414,7 @@ def test_diagnostics_in_both_generations():
 
 def test_ros1_rules():
     error = error_of(answers(ros_distro="noetic", build_type="catkin", nodes=[{"name": "a", "lifecycle": True}]))
-    assert "lifecycle and component nodes are ROS 2 features" in str(error)
+    assert "leave out lifecycle and component: they are ROS 2 features" in str(error)
     error = error_of(answers(ros_distro="noetic", build_type="catkin",
                              nodes=[{"name": "a", "parameters": ["node_handle=1"]}]))
     assert "a member of the base class and parameter 'node_handle'" in str(error)

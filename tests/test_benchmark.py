@@ -73,3 +73,23 @@ def test_a_staged_copy_stops_where_its_stage_ends(template_dir, tmp_path):
     assert asked.returncode != 0 and "invalid answer to 'ros_distro'" in asked.stderr, asked.stderr[-2000:]
     assert staged_copy("questions", {"ros_distro": "jazzy"}).returncode == 0
     assert list(tmp_path.iterdir()) == []
+
+
+def test_each_speed_up_is_counted_off_alone_against_all_on(monkeypatch):
+    """tests/tools/speedup_savings.py: the bookkeeping of its counts, callgrind left out."""
+    sys.path.insert(0, str(TOOLS))
+    import benchmark
+    import speedup_savings
+
+    cases = [benchmark.Case(name, "scale", name, lambda folder: ([], folder), "x") for name in ("default", "nodes_50")]
+    extra = {"": 0, "strings": 5_000_000, "all": 90_000_000}
+
+    def counted(run, bench, folder):
+        return 1_000_000_000 + extra[run.env[speedup_savings.speedups.SWITCH]]
+
+    monkeypatch.setattr(speedup_savings, "_count_one", counted)
+    counts = speedup_savings.count(None, cases, ("", "strings", "all"))
+    assert counts == {setting: {"default": 1_000_000_000 + more, "nodes_50": 1_000_000_000 + more}
+                      for setting, more in extra.items()}
+    table = speedup_savings.table(counts, ("default", "nodes_50"))
+    assert "| strings             |" in table and "+5 M ( +0.5%)" in table and "+90 M ( +9.0%)" in table

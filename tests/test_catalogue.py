@@ -41,20 +41,20 @@ def test_known_noetic_types_pass(package, kind, name):
 
 def test_misspelt_type_gets_the_closest_name():
     assert unknown_type_error("geometry_msgs", "msg", "Twst", "jazzy") == (
-        "'geometry_msgs/msg/Twst' is not a message of geometry_msgs in jazzy (did you mean Twist?)")
+        "did you mean geometry_msgs/msg/Twist? 'geometry_msgs/msg/Twst' is not a message of geometry_msgs in jazzy")
     assert unknown_type_error("example_interfaces", "srv", "AddTwoInt", "humble") == (
-        "'example_interfaces/srv/AddTwoInt' is not a service of example_interfaces in humble"
-        " (did you mean AddTwoInts?)")
+        "did you mean example_interfaces/srv/AddTwoInts? 'example_interfaces/srv/AddTwoInt' is not a service of "
+        "example_interfaces in humble")
 
 
 def test_noetic_spells_types_the_ros1_way():
     assert unknown_type_error("geometry_msgs", "msg", "Twst", "noetic") == (
-        "'geometry_msgs/Twst' is not a message of geometry_msgs in noetic (did you mean Twist?)")
+        "did you mean geometry_msgs/Twist? 'geometry_msgs/Twst' is not a message of geometry_msgs in noetic")
 
 
 def test_a_name_differing_in_case_is_suggested():
-    assert unknown_type_error("geometry_msgs", "msg", "POSESTAMPED", "kilted").endswith(
-        "(did you mean PoseStamped?)")
+    assert unknown_type_error("geometry_msgs", "msg", "POSESTAMPED", "kilted").startswith(
+        "did you mean geometry_msgs/msg/PoseStamped? ")
 
 
 def test_a_type_of_another_kind_is_named_as_such():
@@ -68,7 +68,7 @@ def test_a_type_of_another_kind_is_named_as_such():
 
 def test_without_a_close_name_a_short_package_lists_what_it_has():
     assert unknown_type_error("std_srvs", "srv", "Reboot", "humble") == (
-        "'std_srvs/srv/Reboot' is not a service of std_srvs in humble (std_srvs has Empty, SetBool and Trigger)")
+        "use one of Empty, SetBool and Trigger: 'std_srvs/srv/Reboot' is not a service of std_srvs in humble")
     assert unknown_type_error("std_srvs", "msg", "Reboot", "jazzy") == (
         "'std_srvs/msg/Reboot' is not a message of std_srvs in jazzy: std_srvs has no messages")
     assert unknown_type_error("sensor_msgs", "msg", "Zzzzzz", "jazzy") == (

@@ -1,7 +1,7 @@
 """The nodes dialog: many nodes without YAML, at a first copy and in `copier update`.
 
-The pure parts of extensions/rna/dialog.py are driven by a scripted asker; then a newcomer
-drives `copier copy` and `copier update` in an 80x24 pseudo-terminal (support/terminal.py).
+The pure parts of extensions/rna/dialog.py are driven by a scripted asker; a newcomer drives
+`copier copy` and `copier update` at a real terminal in tests/test_replay.py.
 """
 
 from __future__ import annotations
@@ -45,6 +45,10 @@ class Script(dialog.Asker):
     def say(self, line):
         self.said.append(line)
 
+    def confirm(self, message, default=False):
+        self.said.append(message)
+        return self.answers.pop(0) == "y"
+
 
 def rules(build_type="ament_python", distro="jazzy") -> dialog.Rules:
     return dialog.Rules("pkg", build_type, Types(2, distro=distro))
@@ -54,7 +58,7 @@ def test_endpoints_read_as_their_short_forms():
     assert dialog.entry_text("publishers", "cmd_vel:geometry_msgs/msg/Twist") == "cmd_vel:geometry_msgs/msg/Twist"
     assert dialog.entry_text("subscribers", {"topic": "scan", "type": "sensor_msgs/msg/LaserScan",
                                              "qos": "sensor_data"}) == "scan:sensor_msgs/msg/LaserScan:sensor_data"
-    assert dialog.entry_text("timers", 0.5) == "0.5"
+    assert dialog.entry_text("timers", 0.5) == "timer:0.5"
     assert dialog.entry_text("timers", {"name": "loop", "period": 0.1}) == "loop:0.1"
     assert dialog.entry_text("parameters", {"name": "rate", "type": "double", "default": 2.0}) == "rate:double=2.0"
 
@@ -70,10 +74,50 @@ def test_a_node_in_one_line():
     assert dialog.node_line({"name": "idle"}) == "idle: nothing yet"
 
 
-def test_choices_fit_on_their_questions_line():
-    assert len(dialog.fit("x" * 100, 20)) == 20
-    assert dialog.fit("short", 20) == "short"
-    assert dialog.choice_width("What next?") == 79 - 4 - len("What next?")
+def test_a_menu_line_says_less_to_fit_and_is_cut_only_when_nothing_fits():
+    node = {"name": "driver", "language": "python", "publishers": ["a:std_msgs/msg/String"], "timers": [0.5],
+            "parameters": ["p:int=1"]}
+    forms = dialog.node_forms(node)
+    assert forms[0] == "driver (Python): 1 publisher, 1 timer, 1 parameter"
+    assert dialog.fitting(forms, 45) == "driver: 1 publisher, 1 timer, 1 parameter"
+    assert dialog.fitting(forms, 40) == "driver: 3 endpoints and parameters"
+    assert dialog.fitting(forms, 12) == "driver"
+    assert dialog.fitting(forms, 5) == "dr…er"
+    assert dialog.entry_forms(dialog.KIND_OF["publishers"], "cmd_vel:geometry_msgs/msg/Twist") == [
+        "publisher cmd_vel:geometry_msgs/msg/Twist", "publisher cmd_vel (Twist)", "publisher cmd_vel"]
+
+
+@pytest.mark.parametrize(("key", "entry"), [
+    ("publishers", "scan:sensor_msgs/msg/LaserScan:sensor_data"), ("subscribers", "odom:nav_msgs/msg/Odometry"),
+    ("service_servers", "reset:std_srvs/srv/Trigger"), ("timers", 0.5), ("timers", "loop:0.1"),
+    ("parameters", "rate:double=10.0"), ("parameters", "names:string[]=[a, b]"), ("parameters", "flag:bool"),
+    ("publishers", {"topic": "cmd", "type": "geometry_msgs/msg/Twist", "id": "command"}),
+    ("parameters", {"name": "gain", "type": "double", "default": 1.0, "description": "How hard"}),
+])
+def test_an_entry_is_kept_in_the_form_it_was_given(key, entry):
+    """Read into its keys and written back, an entry is what it was: a short form stays one."""
+    assert dialog.entry_value(key, dialog.entry_mapping(key, entry)) == entry
+
+
+def test_every_key_of_an_entry_is_one_the_nodes_answer_reads():
+    """ENTRY_FIELDS and NODE_SETTINGS name keys of `nodes` (answers/nodes.py checks them)."""
+    from rna.answers import nodes
+
+    for key, fields in dialog.ENTRY_FIELDS.items():
+        entry = {field.key: None for field in fields}
+        if key == "parameters":
+            entry = {"name": "p", "type": "double", "default": 1.0, "description": "d", "read_only": True,
+                     "range": [0.0, 2.0]}
+        elif key == "timers":
+            entry = {"name": "t", "period": 1.0}
+        elif key in ("publishers", "subscribers"):
+            entry = {"topic": "t", "type": "std_msgs/msg/String", "qos": "sensor_data"}
+        else:
+            entry = {"name": "t", "type": {"srv": "std_srvs/srv/Trigger",
+                                           "action": "test_msgs/action/Fibonacci"}[dialog.KIND_OF[key].interface]}
+        assert {field.key for field in fields} >= set(entry)
+        nodes.parse_node({"name": "n", key: [entry]}, package="pkg", build_type="ament_python", types=Types(2))
+    assert {setting.key for setting in dialog.NODE_SETTINGS} <= set(nodes._NODE_KEYS)
 
 
 def test_types_offered_start_with_the_packages_own_then_the_workspace_then_common_ones():
@@ -95,8 +139,8 @@ def test_the_dialog_builds_nodes_in_the_short_forms():
         "Add a timer", "", "abc", "0.1", "Add a timer", "", "0.2",
         "Add a parameter", "max_speed", "double", "fast", "0.5",
         "Add a service server", "reset", "std_srvs/srv/Trigger",
-        "Remove service server", "Rename", "talker", "motor_driver",
-        "Done with", "Remove listener", "Done"])
+        "Edit service server", "Remove this", "Rename", "talker", "motor_driver",
+        "Done with", "Remove listener", "n", "Remove listener", "y", "Done"])
     nodes = dialog.Dialog(yaml.safe_load("[{name: talker, timers: [0.5]}, {name: listener}]"), rules(),
                           script).run()
     assert nodes == [
@@ -106,23 +150,22 @@ def test_the_dialog_builds_nodes_in_the_short_forms():
          "parameters": ["max_speed:double=0.5"]},
     ]
     refused = dict(script.refused)
-    assert refused["Bad Name"].startswith("'Bad Name' is not a valid node name")
-    assert refused["cmd vel"].startswith("topic 'cmd vel'")
+    assert refused["Bad Name"].startswith("use bad_name: 'Bad Name' is not a valid node name")
+    assert refused["cmd vel"].startswith("topic 'cmd vel': use cmd_vel: ")
     # The whole node is read as the `nodes` answer is: the error names the node.
-    assert refused["geometry_msgs/msg/Twst"].startswith("node 'driver': ") and "Twist?" in refused[
-        "geometry_msgs/msg/Twst"]
+    assert refused["geometry_msgs/msg/Twst"].startswith("node 'driver': did you mean geometry_msgs/msg/Twist? ")
     assert refused["abc"].startswith("node 'driver': timer 'timer'")
     assert refused["fast"].startswith("node 'driver': parameter 'max_speed'")
-    assert refused["talker"] == "there is a node 'talker' already"
+    assert refused["talker"] == "choose another name: there is a node 'talker' already"
     assert "Node driver (Python): nothing yet" in script.said
 
 
 def test_an_ament_cmake_node_asks_its_language_and_a_package_keeps_one_node():
-    script = Script(["Remove listener", "Edit talker", "Language", "Python", "Done with", "Remove talker", "Done",
-                     "Add a node", "C++", "solo", "Done with", "Done"])
+    script = Script(["Remove listener", "y", "Edit talker", "Language", "Python", "Done with", "Remove talker", "y",
+                     "Done", "Add a node", "C++", "solo", "Done with", "Done"])
     nodes = dialog.Dialog([{"name": "talker"}, {"name": "listener"}], rules("ament_cmake"), script).run()
     assert nodes == [{"name": "solo", "language": "cpp"}]
-    assert script.said[-2] == "A package needs a node: add one."
+    assert script.said[-2] == "Add a node first: a package needs one."
 
 
 def test_a_name_is_checked_with_the_language_asked_before_it():
@@ -142,7 +185,8 @@ def test_lifecycle_and_component_are_switched_on_and_off_within_the_rules():
     nodes = dialog.Dialog([{"name": "talker", "language": "cpp"}], rules("ament_cmake"), script).run()
     assert nodes == [{"name": "talker", "language": "cpp", "lifecycle": True}]
     # A component is C++: the language stays, said why; then the component goes.
-    assert "node 'talker': components are C++ nodes (rclcpp_components)" in script.said
+    assert ("node 'talker': make it a C++ node to make it a component: components are C++ nodes "
+            "(rclcpp_components)") in script.said
     assert "Lifecycle node: yes" in script.menus[2] and "Component (rclcpp_components): yes" in script.menus[3]
 
 
@@ -170,7 +214,7 @@ def test_autostart_is_offered_to_lifecycle_nodes_and_goes_with_lifecycle():
 
 def test_ros1_types_and_long_forms_kept():
     """A catkin node names ROS 1 types; endpoints written as mappings stay as they are, and can go."""
-    script = Script(["Edit driver", "Remove subscriber", "Add a publisher", "odom", "nav_msgs/Odometr",
+    script = Script(["Edit driver", "Edit subscriber", "Remove this", "Add a publisher", "odom", "nav_msgs/Odometr",
                      "nav_msgs/Odometry", "Done with", "Done"])
     start = [{"name": "driver", "language": "cpp", "subscribers": [{"topic": "cmd_vel", "type": "geometry_msgs/Twist"}],
               "parameters": [{"name": "rate", "type": "double", "default": 10.0}]}]
@@ -178,8 +222,8 @@ def test_ros1_types_and_long_forms_kept():
     assert nodes == [{"name": "driver", "language": "cpp", "parameters": [{"name": "rate", "type": "double",
                                                                           "default": 10.0}],
                       "publishers": ["odom:nav_msgs/Odometry"]}]
-    assert "Remove parameter rate:double=10.0" in script.menus[1]
-    assert "did you mean Odometry?" in dict(script.refused)["nav_msgs/Odometr"]
+    assert "Edit parameter rate:double=10.0" in script.menus[1]
+    assert "did you mean nav_msgs/Odometry?" in dict(script.refused)["nav_msgs/Odometr"]
 
 
 def test_a_parameters_description_and_rules_are_edited_one_at_a_time():
@@ -217,17 +261,6 @@ def test_without_a_terminal_the_dialog_asks_nothing_and_keeps_the_nodes(template
 DOWN = "\x1b[B"
 
 
-def add_topic(terminal: Terminal, kind: str, topic: str, type_: str) -> None:
-    terminal.choose("What next?", f"Add a {kind}")
-    terminal.answer("Topic name", topic)
-    terminal.answer("Message type", type_)
-
-
-def add_node(terminal: Terminal, name: str) -> None:
-    terminal.choose("what next?", "Add a node")
-    terminal.answer("Node name", name)
-
-
 # What the newcomer below makes, and the next test starts from.
 THREE_NODES = [
     {"language": "python", "name": "driver", "publishers": ["odom:nav_msgs/msg/Odometry"],
@@ -239,102 +272,12 @@ THREE_NODES = [
 ]
 
 
-def test_a_newcomer_makes_three_nodes_without_yaml(template_dir, tmp_path):
-    destination = tmp_path / "rover"
-    terminal = Terminal(["copy", "--trust", "--vcs-ref=HEAD", str(template_dir), str(destination)],
-                        tmp_path / "copy.log")
-    try:
-        for prompt in ("Package name", "full name", "e-mail", "License", "Copyright holder", "ROS distribution",
-                       "ament_python holds", "Format of the package's launch file"):
-            terminal.answer(prompt, "")
-        terminal.answer("describe the package's nodes", DOWN * 2)
-        terminal.choose("what next?", "Remove talker")
-        terminal.choose("what next?", "Remove listener")
-        terminal.choose("what next?", "Add a node")
-        terminal.answer("Node name", "driver")
-        terminal.choose("What next?", "Add a subscriber")
-        terminal.answer("Topic name", "cmd_vel")
-        terminal.answer("Message type", "geometry_msgs/msg/Twst")
-        terminal.child.expect_exact("node 'driver': 'geometry_msgs/msg/Twst' is not a message")  # wrapped
-        terminal.child.send("\x7f" * 3 + "wist\r")
-        add_topic(terminal, "publisher", "odom", "nav_msgs/msg/Odometry")
-        terminal.choose("What next?", "Done with")
-        add_node(terminal, "planner")
-        add_topic(terminal, "publisher", "cmd_vel", "geometry_msgs/msg/Twist")
-        terminal.choose("What next?", "Add a service server")
-        terminal.answer("Service name", "replan")
-        terminal.answer("Service type", "std_srvs/srv/Trigger")
-        terminal.choose("What next?", "Done with")
-        add_node(terminal, "monitor")
-        add_topic(terminal, "subscriber", "odom", "nav_msgs/msg/Odometry")
-        terminal.choose("What next?", "Add a parameter")
-        terminal.answer("Parameter name", "limit")
-        terminal.choose("Parameter type", "")  # double
-        terminal.answer("Default value", "2.5")
-        terminal.choose("What next?", "Done with")
-        terminal.choose("what next?", "Done")
-        terminal.answer("One sentence", "")
-        terminal.answer("GitHub Actions workflow", "")
-        # The dialog's rows; the description's default that follows is as long as the nodes make it.
-        cut = [row for row in terminal.wide_rows if "The driver node publishes" not in row]
-        terminal.child.expect(pexpect.EOF, timeout=60)
-    finally:
-        terminal.close()
-    assert terminal.child.exitstatus == 0, (tmp_path / "copy.log").read_text()
-    assert cut == []
-    assert answers_of(destination)["nodes"] == THREE_NODES
-    module = destination / "rover" / "rover"
-    assert {path.name for path in module.glob("*_base.py")} == {"driver_base.py", "planner_base.py",
-                                                               "monitor_base.py"}
-    assert "def on_odom(self, msg):" in (module / "monitor_base.py").read_text()
-
-
 def committed_package(template_dir, destination, nodes) -> None:
     """A package generated and committed to git, as `copier update` needs it."""
     generate(template_dir, destination, {"package_name": "rover", "nodes": nodes})
     git("init", "-q", "-b", "main", cwd=destination)
     git("add", "-A", cwd=destination)
     git("commit", "-q", "-m", "rover from rna-template", cwd=destination)
-
-
-def test_an_update_adds_edits_and_removes_nodes_step_by_step(template_dir, tmp_path):
-    destination = tmp_path / "rover"
-    committed_package(template_dir, destination, THREE_NODES)
-    # --skip-answered: straight to the nodes.
-    terminal = Terminal(["update", "--trust", "--skip-answered", "--vcs-ref=HEAD"], tmp_path / "update.log",
-                        cwd=destination, env=subprocess_env())
-    try:
-        terminal.child.expect_exact("Add, edit or remove nodes step by step? (else keep them)")
-        terminal.child.send("y")  # a yes/no prompt takes one key
-        terminal.choose("what next?", "Remove monitor")
-        terminal.choose("what next?", "Edit planner")
-        terminal.choose("What next?", "Remove service server")
-        terminal.choose("What next?", "Add a timer")
-        terminal.answer("Timer name", "\b" * 10 + "replan")
-        terminal.answer("Period in seconds", "1.0")
-        terminal.choose("What next?", "Done with")
-        add_node(terminal, "logger")
-        add_topic(terminal, "subscriber", "odom", "nav_msgs/msg/Odometry")
-        terminal.choose("What next?", "Done with")
-        terminal.choose("what next?", "Done")
-        terminal.child.expect(pexpect.EOF, timeout=60)
-    finally:
-        terminal.close()
-    assert terminal.child.exitstatus == 0, (tmp_path / "update.log").read_text()
-    assert terminal.wide_rows == []  # no prompt cut
-    answers = answers_of(destination)
-    assert "edit_nodes" not in answers  # asked again at each update
-    assert answers["nodes"] == [
-        THREE_NODES[0],
-        {"language": "python", "name": "planner", "publishers": ["cmd_vel:geometry_msgs/msg/Twist"],
-         "timers": ["replan:1.0"]},
-        {"language": "python", "name": "logger", "subscribers": ["odom:nav_msgs/msg/Odometry"]},
-    ]
-    module = destination / "rover" / "rover"
-    assert {path.name for path in module.glob("*_base.py")} == {"driver_base.py", "planner_base.py",
-                                                               "logger_base.py"}
-    planner = (module / "planner_base.py").read_text()
-    assert "replan" in planner and "Trigger" not in planner
 
 
 @pytest.mark.update  # the flow as it was before the dialog: in the update tier
@@ -372,3 +315,72 @@ def test_a_node_of_the_package_renamed_in_the_dialog_says_its_old_name():
     first_copy = dialog.Dialog([{"name": "talker"}], rules(), Script(["Edit talker", "Rename", "speaker",
                                                                      "Done with", "Done"])).run()
     assert first_copy == [{"name": "speaker", "language": "python"}]
+
+
+class Recording(Script):
+    """A Script that also keeps each text prompt's default and completions."""
+
+    def __init__(self, answers):
+        super().__init__(answers)
+        self.asked: list[tuple[str, str, list[str]]] = []
+
+    def text(self, message, default="", validate=None, complete=()):
+        self.asked.append((message, default, list(complete)))
+        return super().text(message, default, validate, complete)
+
+
+def test_endpoints_and_parameters_are_edited_in_place():
+    start = [{"name": "driver", "publishers": ["cmd_vel:geometry_msgs/msg/Twist"],
+              "subscribers": ["odom:nav_msgs/Odometry"],
+              "parameters": ["rate:double=10.0"]}]
+    script = Script(["Edit driver",
+                     "Edit publisher", "Type", "geometry_msgs/msg/TwistStamped", "QoS", "sensor_data", "Done",
+                     "Edit parameter", "Default", "oops", "20.0", "Description", "Loop rate in Hz", "Read-only", "Done",
+                     "Edit parameter", "Name", "loop_rate", "Done",
+                     "Done with", "Done"])
+    nodes = dialog.Dialog(start, rules(), script).run()
+    assert nodes == [{"name": "driver", "language": "python",
+                      "publishers": ["cmd_vel:geometry_msgs/msg/TwistStamped:sensor_data"],
+                      # The ROS 1 spelling, read as the ROS 2 type it is.
+                      "subscribers": ["odom:nav_msgs/msg/Odometry"],
+                      "parameters": [{"name": "loop_rate", "type": "double", "default": 20.0,
+                                      "description": "Loop rate in Hz", "read_only": True}]}]
+    assert dict(script.refused)["oops"].startswith("node 'driver': parameter 'rate': ")
+
+
+def test_a_type_typed_the_ros1_way_is_kept_the_ros2_way():
+    script = Script(["Add a node", "mover", "Add a publisher", "cmd_vel", "geometry_msgs/Twist", "Done with", "Done"])
+    assert dialog.Dialog([], rules(), script).run() == [
+        {"name": "mover", "language": "python", "publishers": ["cmd_vel:geometry_msgs/msg/Twist"]}]
+
+
+def test_a_topic_the_package_uses_is_offered_its_type():
+    script = Recording(["Add a node", "logger", "Add a subscriber", "/odom", "", "Done with", "Done"])
+    nodes = dialog.Dialog([{"name": "driver", "publishers": ["odom:nav_msgs/msg/Odometry"]}], rules(), script).run()
+    assert nodes[1]["subscribers"] == ["/odom:nav_msgs/msg/Odometry"]
+    message, default, complete = script.asked[-1]
+    assert message == "Message type" and default == "nav_msgs/msg/Odometry" and complete[0] == default
+
+
+def test_removing_a_node_is_confirmed_and_says_what_goes_on_an_update():
+    script = Script(["Remove talker", "n", "Remove talker", "y", "Done"])
+    nodes = dialog.Dialog([{"name": "talker"}, {"name": "listener"}], rules(), script, existing=True).run()
+    assert [node["name"] for node in nodes] == ["listener"]
+    assert script.said[0] == "Remove talker? The update deletes its files, your edits too (git keeps them)"
+    undone = Script(["Remove talker", "y", "Remove listener", "y", "Undo removing listener", "Undo removing talker",
+                     "Done"])
+    nodes = dialog.Dialog([{"name": "talker"}, {"name": "listener"}], rules(), undone).run()
+    assert [node["name"] for node in nodes] == ["talker", "listener"]
+    assert "Undo removing talker" in undone.menus[3] and not any("Undo" in choice for choice in undone.menus[-1])
+    fresh = Script(["Remove talker", "y", "Done"])
+    dialog.Dialog([{"name": "talker"}, {"name": "listener"}], rules(), fresh).run()
+    assert fresh.said[0] == "Remove talker?"
+
+
+def test_a_node_setting_with_choices_slots_into_the_menu(monkeypatch):
+    """A key a later version adds to nodes (a choice) is one row of NODE_SETTINGS: menu, prompt and check follow."""
+    monkeypatch.setattr(dialog, "NODE_SETTINGS", (*dialog.NODE_SETTINGS,
+                                                  dialog.Setting("description", "Description", ("a", "b"))))
+    script = Script(["Edit talker", "Description: (none)", "b", "Done with", "Done"])
+    assert dialog.Dialog([{"name": "talker"}], rules(), script).run() == [
+        {"name": "talker", "language": "python", "description": "b"}]

@@ -7,17 +7,11 @@ import re
 import subprocess
 import sys
 
-from support.generation import ROOT
+from support.docs_site import CONFIG, DOCS, NO_NETWORK
 
-DOCS = ROOT / "docs"
-CONFIG = DOCS / "mkdocs.yml"
 PAGES = DOCS / "pages"
 EXAMPLES = DOCS / "examples"
 SNIPPET = re.compile(r'^--8<-- "examples/([^"]+)"$', re.MULTILINE)
-# Nothing may be fetched while building: any HTTP(S) request through Python's usual clients goes to
-# a closed port and fails the build.
-NO_NETWORK = {"HTTP_PROXY": "http://127.0.0.1:9", "HTTPS_PROXY": "http://127.0.0.1:9",
-              "http_proxy": "http://127.0.0.1:9", "https_proxy": "http://127.0.0.1:9", "NO_PROXY": "", "no_proxy": ""}
 
 
 def test_site_builds_strict_and_offline(tmp_path):

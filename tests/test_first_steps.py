@@ -22,7 +22,7 @@ import yaml
 import rna.names
 from copier_glue import absolute_source
 from rna.update.resolve import answers_yaml
-from support.generation import FIXED_ANSWERS, GIT_IDENTITY, ROOT, answers_of, git
+from support.generation import FIXED_ANSWERS, GIT_IDENTITY, ROOT, answers_of, copier_installed_by_pipx, git
 from support.releases import versions
 
 COPIER = str(Path(sys.executable).with_name("copier"))
@@ -72,7 +72,7 @@ def copy_relative(template_dir: Path, destination: Path) -> subprocess.Completed
     data = [f"--data={key}={value}" for key, value in FIXED_ANSWERS.items()]
     return subprocess.run([COPIER, "copy", "--trust", "--defaults", "--vcs-ref=HEAD", *data, template_dir.name,
                            str(destination)], cwd=template_dir.parent, capture_output=True, text=True,
-                          stdin=subprocess.DEVNULL, timeout=120, env={**os.environ, "NO_COLOR": "1"})
+                          stdin=subprocess.DEVNULL, timeout=120, env={**copier_installed_by_pipx(), "NO_COLOR": "1"})
 
 
 def test_a_copy_from_a_relative_path_records_it_absolute_and_says_how_to_commit(template_dir, tmp_path):
@@ -84,6 +84,34 @@ def test_a_copy_from_a_relative_path_records_it_absolute_and_says_how_to_commit(
     assert (f"  cd {tmp_path / 'demo'}\n  git init\n  git add -A .\n  git commit -m \"demo from rna-template\"\n"
             "  copier update --trust\n") in result.stderr
     assert "--packages-select" not in result.stderr
+    # The README is in the destination, beside the ROS package.
+    assert (f"The package demo is made, in\n  {tmp_path / 'demo'}\nREADME.md there lists what was made and where "
+            "your code goes; the ROS\npackage is the demo folder beside it.\n") in result.stderr
+    assert (tmp_path / "demo" / "README.md").is_file() and (tmp_path / "demo" / "demo" / "package.xml").is_file()
+
+
+@pytest.mark.parametrize(("environ", "command"), [
+    ({}, "copier"),  # pipx links the same Copier onto PATH
+    ({"RNA_TEMPLATE_ENV": "/src/rna/tests/env", "VIRTUAL_ENV": "/src/rna/.venv"}, "/src/rna/tests/env copier"),
+])
+def test_the_commands_printed_run_copier_as_it_was_installed(tmp_path, environ, command):
+    from rna.terminal import copier_command
+
+    venv = tmp_path / "src" / "rna" / ".venv" if environ else tmp_path / "pipx" / "venvs" / "copier"
+    (venv / "bin").mkdir(parents=True)
+    (venv / "bin" / "copier").write_text("")
+    (tmp_path / "bin").mkdir()
+    (tmp_path / "bin" / "copier").symlink_to(venv / "bin" / "copier")
+    environ = {key: value.replace("/src", str(tmp_path / "src")) for key, value in environ.items()}
+    found = copier_command(environ, str(venv / "bin" / "python"), lambda name: str(tmp_path / "bin" / name))
+    assert found == command.replace("/src", str(tmp_path / "src"))
+    # A Copier run from an environment that is not on PATH is named by its path.
+    elsewhere = tmp_path / "elsewhere" / "bin"
+    elsewhere.mkdir(parents=True)
+    (elsewhere / "copier").write_text("")
+    assert copier_command({}, str(elsewhere / "python"), lambda name: str(tmp_path / "bin" / name)) == str(
+        elsewhere / "copier")
+    assert copier_command({}, str(elsewhere / "python"), lambda name: None) == str(elsewhere / "copier")
 
 
 def test_the_message_keeps_to_80_columns_with_the_longest_names(template_dir, tmp_path):
@@ -91,7 +119,7 @@ def test_the_message_keeps_to_80_columns_with_the_longest_names(template_dir, tm
     destination = tmp_path / ("p" * rna.names.PACKAGE_NAME_MAX)
     result = copy_relative(template_dir, destination)
     assert result.returncode == 0, result.stderr
-    message = result.stderr[result.stderr.index("Your package is in"):].splitlines()
+    message = result.stderr[result.stderr.index("The package "):].splitlines()
     assert len(message) >= 9
     long = [line for line in message if len(line) > 79 and str(tmp_path) not in line]
     assert not long, long

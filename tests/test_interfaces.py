@@ -138,7 +138,8 @@ def test_nodes_name_their_own_interfaces_bare_or_in_full():
     [
         ({"interfaces": {"messages": [{"name": "T", "fields": ["flaot64 x"]}]}}, "interfaces", "primitive type"),
         ({"interfaces_location": "package"}, "interfaces_location", "cannot build interfaces"),
-        ({"nodes": [{"name": "a", "publishers": ["t:Missing"]}]}, "nodes", "write it as std_msgs/msg/String"),
+        ({"nodes": [{"name": "a", "publishers": ["t:Missing"]}]}, "nodes",
+         "write it as package/msg/Type, e.g. std_msgs/msg/String"),
     ],
 )
 def test_interface_answers_break_rules_with_one_line(changes, question, rule):

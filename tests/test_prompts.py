@@ -175,3 +175,32 @@ def test_each_prompt_keeps_its_lines_whole_at_80_columns(template_dir, tmp_path,
         terminal.child.close(force=True)
         terminal.log.close()
     assert terminal.child.exitstatus == 0, (tmp_path / "terminal.log").read_text()
+
+
+def test_no_question_reads_a_later_one():
+    """copier-tui (a form over Copier's questions) orders the questions by what their `when`,
+    `default` and `choices` read, and refuses a template where one reads a later one as a
+    circular dependency (docs/pages/how-to/install.md): each reads only questions before it."""
+    import jinja2
+    from jinja2 import meta
+
+    class AnyFilter(dict):  # the template's filters come from its extension: any name is one here
+        def __contains__(self, name):
+            return True
+
+        def get(self, name, default=None):
+            return super().get(name, str)
+
+    environment = jinja2.Environment(extensions=["jinja2.ext.do"])
+    environment.filters = AnyFilter(environment.filters)
+    names = list(QUESTIONS)
+    for position, (name, question) in enumerate(QUESTIONS.items()):
+        read = set()
+        for key in ("when", "default", "choices"):
+            value = question.get(key)
+            sources = value.values() if isinstance(value, dict) else [value]
+            for source in sources:
+                if isinstance(source, str):
+                    read |= meta.find_undeclared_variables(environment.parse(source)) & set(names)
+        later = read - set(names[:position]) - {name}
+        assert not later, f"{name} reads {sorted(later)}, asked after it"

@@ -24,9 +24,10 @@ def test_an_answer_reads_as_its_policies(answer, expected):
 
 @pytest.mark.parametrize(("answer", "rule"), [
     (0, "between 1 and 10000"), ("fast", "or one of default, sensor_data"), (True, "history depth"),
-    ({"reliability": "sometimes"}, "reliability must be one of reliable, best_effort"),
-    ({"history": "keep_all", "depth": 5}, "depth applies to history keep_last"),
-    ({"preset": "system_default", "depth": 5}, "give it no other key"), ({"colour": 1}, "has no key 'colour'"),
+    ({"reliability": "sometimes"}, "give qos reliability one of reliable, best_effort"),
+    ({"history": "keep_all", "depth": 5}, "keep history keep_last: depth applies to it"),
+    ({"preset": "system_default", "depth": 5}, "give qos preset system_default no other key"),
+    ({"colour": 1}, "has no key 'colour'"),
 ])
 def test_a_wrong_answer_names_its_rule(answer, rule):
     with pytest.raises(ValueError, match=rule):
@@ -46,10 +47,12 @@ def nodes(*items, **answers):
 
 
 def test_the_packages_own_nodes_agree_on_types_and_qos():
-    with pytest.raises(ValueError, match=r"topic 'x': node 'b' never hears node 'a': it subscribes reliable"):
+    with pytest.raises(ValueError, match=r"topic 'x': give both the same qos preset: node 'b' never hears node 'a': "
+                                         r"it subscribes reliable"):
         nodes({"name": "a", "publishers": ["x:std_msgs/msg/String:sensor_data"]},
               {"name": "b", "subscribers": ["/x:std_msgs/msg/String"]})
-    with pytest.raises(ValueError, match=r"service 's': node 'a' uses std_srvs/srv/Trigger and node 'b' "):
+    with pytest.raises(ValueError, match=r"service 's': give its nodes one type: node 'a' uses std_srvs/srv/Trigger "
+                                         r"and node 'b' "):
         nodes({"name": "a", "service_servers": ["s:std_srvs/srv/Trigger"]},
               {"name": "b", "service_clients": ["s:std_srvs/srv/SetBool"]})
     # ROS 1 has no such QoS; private names meet no other node's.

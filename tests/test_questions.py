@@ -39,13 +39,16 @@ def copier_cli_in_process(capsys, template: Path, destination: Path, *args: str)
 @pytest.mark.parametrize(
     ("args", "message"),
     [
-        (["--data", "package_name=My-Bad Pkg"], "invalid answer to 'package_name': 'My-Bad Pkg' breaks REP 144"),
-        (["--data", "maintainer_email=nobody"], "invalid answer to 'maintainer_email': 'nobody' is not an e-mail"),
-        (["--data", "nodes=[{name: Talker}]"], "invalid answer to 'nodes': 'Talker' is not a valid node name"),
+        (["--data", "package_name=My-Bad Pkg"],
+         "invalid answer to 'package_name': use my_bad_pkg: 'My-Bad Pkg' breaks REP 144"),
+        (["--data", "maintainer_email=nobody"],
+         "invalid answer to 'maintainer_email': write it as name@host.domain: 'nobody' is not an e-mail"),
+        (["--data", "nodes=[{name: Talker}]"],
+         "invalid answer to 'nodes': use talker: 'Talker' is not a valid node name"),
         (["--data", "nodes=[{name: t, publishers: ['a b:std_msgs/msg/String']}]"],
          "invalid answer to 'nodes': node 't': publisher: topic 'a b'"),
         (["--data", "nodes=[{name: t, subscribers: [x:std_srvs/srv/Empty]}]"],
-         "invalid answer to 'nodes': node 't': 'std_srvs/srv/Empty' is a service type"),
+         "invalid answer to 'nodes': node 't': give a message type here: 'std_srvs/srv/Empty' is a service type"),
         (["--data", "nodes=[{name: t, language: cpp}]"], "an ament_python package holds Python nodes only"),
         # Choices and YAML that Copier itself would refuse with a traceback (issue 8).
         (["--data", "ros_distro=foxy"], "invalid answer to 'ros_distro': 'foxy' is not one of"),
@@ -58,7 +61,8 @@ def copier_cli_in_process(capsys, template: Path, destination: Path, *args: str)
         (["--data", "build_type=ament_python", "--data", "interfaces_location=package"],
          "invalid answer to 'interfaces_location': an ament_python package cannot build interfaces"),
         (["--data", "nodes=- name: [unclosed"], "invalid answer to 'nodes': not valid YAML"),
-        (["--data", "nodes=[{name: t, publishers: ['v:geometry_msgs/msg/Twst']}]"], "did you mean Twist?"),
+        (["--data", "nodes=[{name: t, publishers: ['v:geometry_msgs/msg/Twst']}]"],
+         "did you mean geometry_msgs/msg/Twist?"),
     ],
 )
 def test_bad_answers_give_one_line_and_write_nothing(template_folder, tmp_path, capsys, args, message):
@@ -80,7 +84,7 @@ def test_bad_answers_leave_an_existing_folder_untouched(template_folder, tmp_pat
     data.write_text(yaml.safe_dump({"package_name": "ok_name", "nodes": [{"name": "a", "timers": [0]}]}))
     result = copier_copy(template_folder, destination, "--data-file", str(data))
     assert result.returncode == 1, result.stderr
-    assert "invalid answer to 'nodes': node 'a': timer 'timer': period must be more than 0 s" in result.stderr
+    assert "invalid answer to 'nodes': node 'a': timer 'timer': give a period of more than 0 s" in result.stderr
     assert [p.name for p in destination.iterdir()] == ["notes.txt"]
 
 
@@ -152,6 +156,7 @@ def test_one_node_prompt_by_prompt_without_yaml(terminal, tmp_path):
     node = answers["nodes"][0]
     assert (node["name"], node["language"]) == ("motion_control", "python")
     assert node["subscribers"] == ["odom:nav_msgs/msg/Odometry", "scan:sensor_msgs/msg/LaserScan"]
+    # The default, as much as fits the prompt's line: all of it, at 200 columns (87 characters).
     assert answers["description"] == (
         "The motion_control node publishes cmd_vel, subscribes to odom and scan and calls reset")
     base = (tmp_path / "mover" / "mover" / "mover" / "motion_control_base.py").read_text()

@@ -93,3 +93,17 @@ def test_a_shallow_clone_says_what_to_fetch(history, tmp_path):
     result = run_tool(shallow)
     assert result.returncode == 1 and "git fetch --unshallow" in result.stderr
     assert git("tag", "-l", cwd=shallow).stdout == ""
+
+
+def test_the_tags_made_are_listed_in_lines_of_79_columns_each_tag_whole():
+    import importlib.machinery
+    import importlib.util
+
+    loader = importlib.machinery.SourceFileLoader("tag_releases", str(TAG_RELEASES))
+    tool = importlib.util.module_from_spec(importlib.util.spec_from_loader("tag_releases", loader))
+    loader.exec_module(tool)
+    tags = [f"v0.{minor}.{patch} (74249d5)" for minor in range(4) for patch in range(3)]
+    lines = tool.tagged_lines(tags).splitlines()
+    assert all(len(line) <= 79 for line in lines) and len(lines) > 1
+    assert " ".join(lines).split() == tool.tagged_lines(tags, width=10_000).split()
+    assert all(line.rstrip(",").endswith(")") or line.endswith("docs/CHANGELOG.md") for line in lines)

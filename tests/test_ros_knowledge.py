@@ -55,7 +55,7 @@ def test_package_names_following_rep_144(name):
         ("r", "at least two characters"),
         ("class", "Python keyword"),
         ("namespace", "C++ keyword"),
-        ("", "required"),
+        ("", "give a"),
     ],
 )
 def test_package_names_breaking_a_rule(name, rule):
@@ -87,7 +87,7 @@ def test_valid_topic_names(topic):
 @pytest.mark.parametrize(
     ("topic", "rule"),
     [
-        ("", "required"),
+        ("", "give a"),
         ("cmd vel", "letters, digits and '_'"),
         ("/2d/scan", "does not start with a digit"),
         ("scan/", "must not end with '/'"),
@@ -95,7 +95,7 @@ def test_valid_topic_names(topic):
         ("~scan", "'~' must be followed by '/'"),
         ("a/~/b", "letters, digits and '_'"),
         ("{node}/status", "substitutions"),
-        ("/", "no name"),
+        ("/", "give a name after its prefix"),
     ],
 )
 def test_topic_names_breaking_a_rule(topic, rule):
@@ -168,12 +168,12 @@ def test_interface_spelling_ros1():
 @pytest.mark.parametrize(
     ("text", "kind", "rule"),
     [
-        ("std_srvs/srv/Trigger", "msg", "is a service type, but a message type is needed"),
+        ("std_srvs/srv/Trigger", "msg", "give a message type here: 'std_srvs/srv/Trigger' is a service type"),
         ("String", "msg", "write it as"),
         ("std_msgs/msg/string", "msg", "CamelCase"),
         ("Std-Msgs/msg/String", "msg", "REP 144"),
         ("std_msgs/foo/String", "msg", "msg, srv or action"),
-        (None, "srv", "required"),
+        (None, "srv", "give a service type"),
     ],
 )
 def test_interface_types_breaking_a_rule(text, kind, rule):

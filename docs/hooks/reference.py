@@ -1,9 +1,11 @@
-"""mkdocs hook: the site's address and the generated parts of the answers reference.
+"""mkdocs hook: the site's address, the generated parts of the answers reference, and node graphs.
 
 The address comes from extensions/rna/lab.py (a fork's extensions/lab.yml can change it),
 the one place prompts and generated READMEs read it from. The tables of every question
 and of every key of a node come from copier.yml and from the JSON Schema that rna.schema
-makes from the template's own rules, so the reference says what the validators check.
+makes from the template's own rules, so the reference says what the validators check. `<!-- rna: graph of <example> -->` in a
+page becomes the Mermaid graph of docs/examples/<example>.yml, as the package's generated
+README draws it (rna.graph).
 """
 
 from __future__ import annotations
@@ -17,7 +19,7 @@ import yaml
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "extensions"))
 
-from rna import lab, schema  # noqa: E402 - the template's own package
+from rna import build_package, graph, lab, schema  # noqa: E402 - the template's own package
 from rna.port import rules as port_rules  # noqa: E402
 
 _JINJA = re.compile(r"\{\{.*?\}\}|\{%.*?%\}", re.S)
@@ -110,7 +112,25 @@ def port_rules_table() -> str:
     return "\n\n".join(parts)
 
 
+# The answers an example leaves to the person copying it.
+_EXAMPLE_DEFAULTS = {"package_name": "example", "description": "An example", "maintainer": "Ada Lovelace",
+                     "maintainer_email": "ada@example.com", "license": "Apache-2.0",
+                     "copyright_holder": "Ada Lovelace", "copyright_year": 2026, "ros_distro": "jazzy",
+                     # The graph does not depend on these.
+                     "build_type": "ament_python", "launch_format": "xml", "target": "package",
+                     "interfaces": {}, "interfaces_location": "separate"}
+_GRAPH = re.compile(r"<!-- rna: graph of ([a-z0-9_]+) -->")
+
+
+def example_graph(name: str) -> str:
+    """The Mermaid block a package made from docs/examples/<name>.yml has in its README."""
+    answers = yaml.safe_load((ROOT / "docs" / "examples" / f"{name}.yml").read_text())
+    package = build_package({**_EXAMPLE_DEFAULTS, **answers})
+    return "```mermaid\n" + "\n".join(graph.mermaid_lines(package.nodes)) + "\n```"
+
+
 def on_page_markdown(markdown, page, config, files):
+    markdown = _GRAPH.sub(lambda match: example_graph(match[1]), markdown)
     return (markdown.replace("<!-- rna: questions -->", questions_table())
             .replace("<!-- rna: node keys -->", node_keys_table())
             .replace("<!-- rna: port rules -->", port_rules_table()))

@@ -1,10 +1,15 @@
-"""The nodes dialog: add, edit and remove nodes and their endpoints by short prompts.
+"""The nodes dialog: add, edit and remove nodes, their endpoints and parameters by short prompts.
 
 Its result is the ordinary `nodes` answer (a list of mappings whose endpoints use the
-short forms, `topic:type[:qos]`, `name:type`, `name:period`, `name:type=default`), so
-the answers file reads as if it had been typed as YAML. Every check is the one the
-`nodes` answer gets (answers/nodes.py): a node is read with `parse_node` before it is
-kept, and its error, which starts with the node's name, is shown at the prompt.
+short forms, `topic:type[:qos]`, `name:type`, `name:period`, `name:type=default`, or
+mappings when they hold more than a short form can), so the answers file reads as if it
+had been typed as YAML. Every check is the one the `nodes` answer gets (answers/nodes.py):
+a node is read with `parse_node` before a change is kept, and its error is shown at the
+prompt, whole.
+
+What can be edited is described by tables, not by code: `ENTRY_FIELDS` (the keys of one
+endpoint or parameter) and `NODE_SETTINGS` (a node's own keys). A new key of the `nodes`
+answer is one row there: the menus, the prompts and the checks follow.
 
 `Dialog` asks through an `Asker` (questionary at a terminal, a script in the tests).
 """
@@ -12,21 +17,21 @@ kept, and its error, which starts with the node's name, is shown at the prompt.
 from __future__ import annotations
 
 import copy
-import textwrap
+import re
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
 import yaml
 
-from . import catalogue, distros, names
-from .answers.nodes import Types, parameter_mapping, parse_node
-from .interfaces import InterfaceType
-from .parameters import SCALAR_TYPES, infer_type, parse_type
+from . import catalogue, distros, names, qos, terminal
+from .answers.nodes import Types, normalised_entry, parse_node
+from .interfaces import InterfaceType, normalised_type
+from .parameters import SCALAR_TYPES
 from .update.resolve import RENAMED_FROM
 
-WIDTH = 79  # columns of a line, in an 80-column terminal
-# questionary draws a choice after a 3-column pointer, and the one picked after the
-# question: "🎤 <message> <choice>" (the emoji is 2 columns wide).
+# questionary draws a choice after a pointer of 3 columns; the one picked is shown on
+# the line under its question, after 2 (the question ends in a line break, as Copier's do).
+POINTER = 3
 
 
 @dataclass(frozen=True)
@@ -51,29 +56,89 @@ KINDS = (
     Kind("parameters", "parameter"),
 )
 KIND_OF = {kind.key: kind for kind in KINDS}
-NAME_PROMPTS = {"msg": "Topic name", "srv": "Service name", "action": "Action name"}
-TYPE_PROMPTS = {"msg": "Message type[:qos]", "srv": "Service type",
-                "action": "Action type"}
 PARAMETER_TYPES = (*SCALAR_TYPES, *(f"{scalar}[]" for scalar in SCALAR_TYPES))
 # Offered first in a type list: the packages most nodes use.
 COMMON_PACKAGES = ("std_msgs", "geometry_msgs", "sensor_msgs", "nav_msgs", "std_srvs", "example_interfaces")
+NO_VALUE = "(none)"  # a choice that leaves an optional key out
 
-FLAGS = {"lifecycle": "Lifecycle node", "autostart": "Configured and activated by the launch file (autostart)",
-         "component": "Component (rclcpp_components)",
-         "diagnostics": "Diagnostics (diagnostic_updater, on /diagnostics)"}
-BACK = "(empty: back)"  # a name left empty adds nothing
-# A parameter's description and rules, edited one at a time: (key, label, which parameters have it).
-PARAMETER_RULES = (
-    ("description", "Description", "one line", lambda ptype, ros: True),
-    ("range", "Range", "min, max or min, max, step", lambda ptype, ros: ptype.is_numeric),
-    ("one_of", "Allowed values", "e.g. slow, fast", lambda ptype, ros: ptype.scalar != "bool"),
-    ("length", "Number of values", "n, [min, max], {min: n} or {max: n}", lambda ptype, ros: ptype.is_array),
-    ("not_empty", "Not empty", "", lambda ptype, ros: ptype.name == "string"),
-    ("read_only", "Read-only", "", lambda ptype, ros: ros == 2),
+
+@dataclass(frozen=True)
+class Field:
+    """One key of an endpoint or parameter, as the dialog asks it.
+
+    `form`: "text" (kept as typed), "yaml" (a number, a list...: read as YAML), "list" (a YAML
+    list, its brackets optional: `slow, fast`), "type" (an interface type, completed from the
+    catalogue), "choice" (from `choices`) or "bool".
+    `short`: the key is part of the entry's short form (`topic:type:qos`...); an entry with
+    any other key is kept as a mapping. `asked`: asked when the entry is added.
+    """
+
+    key: str
+    label: str
+    prompt: str
+    form: str = "text"
+    choices: tuple[str, ...] = ()
+    short: bool = True
+    asked: bool = True
+    optional: bool = False
+
+
+_TOPIC = (Field("topic", "Topic", "Topic name"), Field("type", "Type", "Message type", "type"),
+          Field("qos", "QoS", "QoS preset", "choice", tuple(qos.PRESETS), asked=False, optional=True))
+_SERVICE = (Field("name", "Name", "Service name"), Field("type", "Type", "Service type", "type"))
+_ACTION = (Field("name", "Name", "Action name"), Field("type", "Type", "Action type", "type"))
+ENTRY_FIELDS: dict[str, tuple[Field, ...]] = {
+    "publishers": _TOPIC,
+    "subscribers": _TOPIC,
+    "service_servers": _SERVICE,
+    "service_clients": _SERVICE,
+    "action_servers": _ACTION,
+    "action_clients": _ACTION,
+    "timers": (Field("name", "Name", "Timer name"), Field("period", "Period", "Period in seconds (e.g. 0.1)", "yaml")),
+    "parameters": (
+        Field("name", "Name", "Parameter name"),
+        Field("type", "Type", "Parameter type", "choice", PARAMETER_TYPES),
+        Field("default", "Default", "Default value (e.g. 1.5, true, text, [1, 2])", "yaml", optional=True),
+        Field("description", "Description", "Description (one line)", short=False, asked=False, optional=True),
+        Field("read_only", "Read-only", "Read-only (set at start-up only)", "bool", short=False, asked=False),
+        Field("range", "Range", "Range as min, max or min, max, step (int and double)", "list", short=False,
+              asked=False, optional=True),
+        Field("one_of", "Allowed values", "Allowed values, e.g. slow, fast (an array's: of each value)", "list",
+              short=False, asked=False, optional=True),
+        Field("length", "Number of values", "Number of values (arrays): n, [min, max], {min: n} or {max: n}",
+              "yaml", short=False, asked=False, optional=True),
+        Field("not_empty", "Not empty", "Not empty (strings)", "bool", short=False, asked=False),
+    ),
+}
+
+
+@dataclass(frozen=True)
+class Setting:
+    """One of a node's own keys, changed from the node's menu: a yes/no or a choice."""
+
+    key: str
+    label: str
+    choices: tuple[str, ...] = ()  # empty: yes/no
+    ros: tuple[int, ...] = (1, 2)
+    # Offered only when this holds of the node (a mapping): e.g. autostart for lifecycle nodes.
+    when: Callable[[Mapping], bool] = lambda node: True
+
+
+NODE_SETTINGS = (
+    Setting("lifecycle", "Lifecycle node", ros=(2,)),
+    Setting("autostart", "Configured and activated by the launch file (autostart)", ros=(2,),
+            when=lambda node: bool(node.get("lifecycle"))),
+    Setting("component", "Component (rclcpp_components)", ros=(2,),
+            when=lambda node: node.get("language") == "cpp" or bool(node.get("component"))),
+    Setting("diagnostics", "Diagnostics (diagnostic_updater, on /diagnostics)"),
 )
-FLAG_RULES = ("not_empty", "read_only")
+# Kept for the tests and the docs: the yes/no settings by key.
+FLAGS = {setting.key: setting.label for setting in NODE_SETTINGS if not setting.choices}
+BACK = "(empty: back)"  # a name left empty adds nothing
 ADD_NODE = "Add a node"
 DONE = "Done"
+REMOVE = "Remove it"
+KEEP = "Keep it"
 
 
 def optional(check: Callable[[str], str | None]) -> Callable[[str], str | None]:
@@ -85,97 +150,143 @@ def article(word: str) -> str:
     return ("an " if word[0] in "aeiou" else "a ") + word
 
 
-def choice_width(message: str) -> int:
-    """The widest choice that, once picked, still fits on its question's line."""
-    return WIDTH - 4 - len(message)
+def fitting(forms: Sequence[str], width: int) -> str:
+    """The first of `forms` (most detailed first) that fits `width` columns; the last one, which
+    says the least, shortened in its middle only when even it does not fit (a terminal too narrow
+    for a name)."""
+    for form in forms:
+        if len(form) <= width:
+            return form
+    last = forms[-1]
+    keep = max(width - 1, 2)
+    return last[:keep - keep // 2] + "…" + last[len(last) - keep // 2:]
 
 
-def fit(text: str, width: int = WIDTH) -> str:
-    """`text` on one line of at most `width` columns, cut with an ellipsis."""
-    return text if len(text) <= width else text[:width - 1] + "…"
+def choice_width() -> int:
+    """The widest choice a menu can show whole at this terminal (after the pointer)."""
+    return terminal.width() - POINTER
+
+
+def entry_mapping(key: str, entry: object) -> dict:
+    """An endpoint or parameter as a mapping of its keys, from its short form or its mapping."""
+    if isinstance(entry, Mapping):
+        return dict(entry)
+    if key == "timers":
+        if isinstance(entry, str) and ":" in entry:
+            name, _, period = entry.partition(":")
+            return {"name": name.strip(), "period": yaml.safe_load(period) if period.strip() else None}
+        return {"period": entry}
+    text = str(entry)
+    if key == "parameters":
+        match = re.fullmatch(r"(?P<name>[^:=\s]+)\s*(?::\s*(?P<type>[^=\s]+))?\s*(?:=(?P<default>.*))?", text.strip(),
+                             re.S)
+        if not match:
+            return {"name": text}
+        mapping = {"name": match["name"]}
+        if match["type"]:
+            mapping["type"] = match["type"]
+        if match["default"] is not None:
+            try:
+                mapping["default"] = yaml.safe_load(match["default"])
+            except yaml.YAMLError:
+                mapping["default"] = match["default"]
+        return mapping
+    fields = [field.key for field in ENTRY_FIELDS[key] if field.short]
+    parts = [part.strip() for part in text.split(":", len(fields) - 1)]
+    return {field: part for field, part in zip(fields, parts, strict=False) if part != ""}
+
+
+def _yaml_text(value: object) -> str:
+    """A value as its short form writes it (1.5, true, [1, 2], text)."""
+    if isinstance(value, str):
+        return value
+    return yaml.safe_dump(value, default_flow_style=True).strip().removesuffix("...").strip()
+
+
+def entry_value(key: str, mapping: Mapping) -> object:
+    """An endpoint or parameter in its short form when that holds all its keys, else its mapping."""
+    allowed = {field.key for field in ENTRY_FIELDS[key] if field.short}
+    present = {name: value for name, value in mapping.items() if value not in (None, "")}
+    if set(present) - allowed:
+        return present
+    if key == "timers":
+        period = present.get("period")
+        return f"{present['name']}:{_yaml_text(period)}" if "name" in present else period
+    if key == "parameters":
+        text = str(present.get("name"))
+        if present.get("type") is not None:
+            text += f":{present['type']}"
+        return text + (f"={_yaml_text(present['default'])}" if "default" in present else "")
+    fields = [field.key for field in ENTRY_FIELDS[key] if field.short]
+    parts = [str(present.get(field, "")) for field in fields]
+    while len(parts) > 2 and not parts[-1]:
+        parts.pop()
+    return ":".join(parts)
 
 
 def entry_text(key: str, entry: object) -> str:
     """An endpoint as one short line: its short form, or the short form of its mapping."""
-    if not isinstance(entry, Mapping):
-        return str(entry)
+    mapping = entry_mapping(key, entry)
     if key == "timers":
-        return f"{entry.get('name', 'timer')}:{entry.get('period')}"
+        return f"{mapping.get('name', 'timer')}:{_yaml_text(mapping.get('period'))}"
     if key == "parameters":
-        text = str(entry.get("name"))
-        if entry.get("type") is not None:
-            text += f":{entry['type']}"
-        return text + (f"={entry['default']}" if entry.get("default") is not None else "")
-    first = entry.get("topic", entry.get("name"))
-    qos = f":{entry['qos']}" if entry.get("qos") not in (None, "") else ""
-    return f"{first}:{entry.get('type')}{qos}"
+        text = str(mapping.get("name"))
+        if mapping.get("type") is not None:
+            text += f":{mapping['type']}"
+        return text + (f"={_yaml_text(mapping['default'])}" if mapping.get("default") is not None else "")
+    first = mapping.get("topic", mapping.get("name"))
+    qos_text = f":{mapping['qos']}" if mapping.get("qos") not in (None, "") else ""
+    return f"{first}:{mapping.get('type')}{qos_text}"
 
 
-def short_parameter(mapping: Mapping) -> str | dict:
-    """A parameter's mapping as its short form `name:type=default` when it has nothing else."""
-    default = rule_text(mapping["default"]) if "default" in mapping else ""
-    if set(mapping) - {"name", "type", "default"} or "\n" in default:
-        return dict(mapping)
-    return entry_text("parameters", {**mapping, "default": default} if "default" in mapping else mapping)
-
-
-def rule_text(value: object) -> str:
-    """A rule's value as it is typed: [0.0, 10.0], [slow, fast], {min: 1}."""
-    return yaml.safe_dump(value, default_flow_style=True, width=10**6).strip().removesuffix("...").strip()
-
-
-def read_rule(key: str, answer: str) -> object:
-    """What is typed for a rule, as the answers hold it; '' removes it. A list may be typed without brackets."""
-    answer = answer.strip()
-    if not answer or key == "description":
-        return answer
-    try:
-        value = yaml.safe_load(answer)
-        if key in ("range", "one_of") and not isinstance(value, list):
-            value = yaml.safe_load(f"[{answer}]")
-    except yaml.YAMLError:
-        return answer  # the node's check says what is wrong with it
-    return value
-
-
-def parameter_type(mapping: Mapping):
-    """A parameter's type as its answer gives it, or None."""
-    try:
-        return parse_type(mapping["type"]) if mapping.get("type") is not None else infer_type(mapping.get("default"))
-    except ValueError:
-        return None
+def entry_forms(kind: Kind, entry: object) -> list[str]:
+    """The ways to show an entry in a menu, most detailed first."""
+    mapping = entry_mapping(kind.key, entry)
+    name = str(mapping.get("topic", mapping.get("name", "timer")))
+    kept = entry_text(kind.key, entry)
+    forms = [f"{kind.label} {kept}"]
+    if "type" in mapping:
+        forms.append(f"{kind.label} {name} ({str(mapping['type']).rsplit('/', 1)[-1]})")
+    forms.append(f"{kind.label} {name}")
+    return forms
 
 
 def timer_name(entry: object) -> str:
     """A timer's name: given as `name:period` or in a mapping, else `timer` (answers/nodes.py)."""
-    text = entry_text("timers", entry)
-    return text.split(":", 1)[0] if ":" in text else "timer"
+    return str(entry_mapping("timers", entry).get("name") or "timer")
 
 
-def node_line(node: Mapping) -> str:
-    """`talker (Python): 1 publisher, 1 timer`."""
+def node_forms(node: Mapping) -> list[str]:
+    """`talker (Python): 1 publisher, 1 timer` and shorter ways to say it, for a menu's width."""
     counts = []
     for kind in KINDS:
         count = len(node.get(kind.key) or [])
         if count:
             counts.append(f"{count} {kind.label if count == 1 else kind.plural}")
+    total = sum(len(node.get(kind.key) or []) for kind in KINDS)
     language = distros.LANGUAGE_NAMES.get(str(node.get("language")), "")
-    text = f"{node.get('name')}" + (f" ({language})" if language else "")
-    return text + (": " + ", ".join(counts) if counts else ": nothing yet")
+    name = f"{node.get('name')}"
+    titled = name + (f" ({language})" if language else "")
+    if not counts:
+        return [f"{titled}: nothing yet", f"{name}: nothing yet", name]
+    plural = "s" if total > 1 else ""
+    summed = f"{total} endpoint{plural}" + (f" and parameter{plural}" if node.get("parameters") else "")
+    return [f"{titled}: " + ", ".join(counts), f"{name}: " + ", ".join(counts), f"{titled}: {summed}",
+            f"{name}: {summed}", name]
 
 
-def short_endpoint(name: str, value: str) -> str:
-    """The short form of one endpoint from its two answers (name, then type, period or type=default)."""
-    return f"{name.strip()}:{value.strip()}"
+def node_line(node: Mapping) -> str:
+    """`talker (Python): 1 publisher, 1 timer`."""
+    return node_forms(node)[0]
 
 
 def type_choices(interface: str, ros: int, distro: str | None, found: Sequence[str] = (),
-                 own: Sequence[str] = ()) -> list[str]:
-    """Types of one kind to complete from: the package's own, the workspace's, then the catalogue's.
+                 own: Sequence[str] = (), first: Sequence[str] = ()) -> list[str]:
+    """Types of one kind to complete from: `first`, the package's own, the workspace's, then the catalogue's.
 
     The common packages come first; any other type may still be typed.
     """
-    listed = list(own)
+    listed = [*first, *own]
     for name in found:  # pkg/kind/Name, as ROS 1 spells it without the kind
         package, kind, type_name = name.split("/")
         if kind == interface:
@@ -215,22 +326,39 @@ class Rules:
         if error:
             return error
         if name in others:
-            return f"there is a node '{name}' already"
+            return f"choose another name: there is a node '{name}' already"
         return None
 
 
 class Asker:
-    """The prompts the dialog uses; each returns the answer (questionary at a terminal)."""
+    """The prompts the dialog uses; each returns the answer (questionary at a terminal).
+
+    A question ends in a line break, as Copier's do: the answer is shown under it, where a
+    long one has the whole line.
+    """
+
+    def __init__(self) -> None:
+        terminal.show_whole_validation_errors()
 
     def select(self, message: str, choices: Sequence[str], default: str | None = None) -> str:
         import questionary
 
         # Typing filters the choices: a long menu is reached by a few letters.
-        return questionary.select(message, choices=list(choices), default=default, qmark="🎤",
+        return questionary.select(self.fitted(message) + "\n ", choices=list(choices), default=default, qmark="🎤",
                                   use_search_filter=True, use_jk_keys=False).unsafe_ask()
 
+    @staticmethod
+    def fitted(message: str) -> str:
+        """The question wrapped at the terminal's width, after the question mark's 3 columns."""
+        return terminal.fitted_lines("   " + message, terminal.width())[3:]
+
+    def confirm(self, message: str, default: bool = False) -> bool:
+        import questionary
+
+        return questionary.confirm(self.fitted(message) + "\n ", default=default, qmark="🎤").unsafe_ask()
+
     def say(self, line: str) -> None:
-        print(line, flush=True)
+        print("\n".join(terminal.wrap(line, terminal.width())), flush=True)
 
     def text(self, message: str, default: str = "", validate: Callable[[str], str | None] | None = None,
              complete: Sequence[str] = ()) -> str:
@@ -238,14 +366,14 @@ class Asker:
 
         def check(answer: str):
             error = validate(answer) if validate else None
-            # Shown under the prompt: wrapped at the terminal's width rather than by it.
-            return textwrap.fill(error, WIDTH - 1) if error else True
+            return error or True  # shown whole, wrapped, under the prompt (rna/terminal.py)
 
         # Checked on Enter: a half-typed answer is not an error yet.
         if complete:
-            return questionary.autocomplete(message, choices=list(complete), default=default, validate=check,
-                                            match_middle=True, qmark="🎤", validate_while_typing=False).unsafe_ask()
-        return questionary.text(message, default=default, validate=check, qmark="🎤",
+            return questionary.autocomplete(self.fitted(message) + "\n ", choices=list(complete), default=default,
+                                            validate=check, match_middle=True, qmark="🎤",
+                                            validate_while_typing=False).unsafe_ask()
+        return questionary.text(self.fitted(message) + "\n ", default=default, validate=check, qmark="🎤",
                                 validate_while_typing=False).unsafe_ask()
 
 
@@ -255,16 +383,22 @@ class Dialog:
     def __init__(self, nodes: object, rules: Rules, asker: Asker | None = None,
                  found: Sequence[str] = (), own: Mapping[str, Sequence[str]] | None = None,
                  existing: bool = False) -> None:
-        """`existing`: the nodes are the package's (an update): a node renamed says its old name."""
+        """`existing`: the nodes are the package's (an update): a node renamed says its old name,
+        and removing one says that its files go."""
         self.nodes = [dict(node) if isinstance(node, Mapping) else {"name": str(node)}
                       for node in (copy.deepcopy(nodes) if isinstance(nodes, list) else [])]
         self.existing = {node["name"] for node in self.nodes} if existing else set()
         self.rules = rules
         for node in self.nodes:  # written out, as the answers file records it
             node.setdefault("language", distros.default_language(rules.build_type))
+            for kind in KINDS:
+                if kind.interface and isinstance(node.get(kind.key), list):
+                    node[kind.key] = [normalised_entry(entry, kind.interface, rules.types.ros)
+                                      for entry in node[kind.key]]
         self.ask = asker or Asker()
         self.found = list(found)
         self.own = dict(own or {})
+        self.removed: list[tuple[int, dict]] = []  # (where it was, the node): undone last first
 
     # --- the package's nodes
 
@@ -272,9 +406,13 @@ class Dialog:
         while True:
             message = f"Nodes ({len(self.nodes)}): what next?"
             choices = [ADD_NODE]
+            width = choice_width()
             for node in self.nodes:
-                choices.append(fit(f"Edit {node_line(node)}", choice_width(message)))
-            choices.extend(f"Remove {node['name']}" for node in self.nodes)
+                choices.append(fitting([f"Edit {form}" for form in node_forms(node)], width))
+            choices.extend(fitting([f"Remove {node['name']}"], width) for node in self.nodes)
+            undo = fitting([f"Undo removing {self.removed[-1][1]['name']}", "Undo the removal"], width) \
+                if self.removed else None
+            choices.extend([undo] if undo else [])
             choices.append(DONE)
             count = len(self.nodes)
             picked = self.ask.select(message, choices, default=DONE if self.nodes else ADD_NODE)
@@ -283,16 +421,30 @@ class Dialog:
             if picked == DONE:
                 if self.nodes:
                     return self.nodes
-                self.ask.say("A package needs a node: add one.")
+                self.ask.say("Add a node first: a package needs one.")
                 continue
             if picked == ADD_NODE:
                 self.add_node()
+                continue
+            if picked == undo:
+                index, node = self.removed.pop()
+                self.nodes.insert(min(index, len(self.nodes)), node)
                 continue
             index = choices.index(picked) - 1
             if index < count:
                 self.edit_node(self.nodes[index])
             else:
-                del self.nodes[index - count]
+                self.remove_node(self.nodes[index - count])
+
+    def remove_node(self, node: dict) -> None:
+        """Asked first: on an update, its files go too (git keeps what was committed)."""
+        name = node["name"]
+        was = node.get(RENAMED_FROM) or (name if name in self.existing else None)
+        question = (f"Remove {name}? The update deletes its files, your edits too (git keeps them)" if was
+                    else f"Remove {name}?")
+        if self.ask.confirm(question, default=False):
+            self.removed.append((self.nodes.index(node), node))
+            self.nodes.remove(node)
 
     def add_node(self) -> None:
         others = [node["name"] for node in self.nodes]
@@ -316,131 +468,76 @@ class Dialog:
 
     # --- one node
 
+    def settings(self, node: Mapping) -> list[Setting]:
+        """The node's own keys it may change here, in this ROS generation and with its other keys."""
+        return [setting for setting in NODE_SETTINGS
+                if self.rules.types.ros in setting.ros and setting.when(node)]
+
+    def flags(self, node: Mapping) -> list[str]:
+        """The yes/no keys a node may change here (the settings without choices)."""
+        return [setting.key for setting in self.settings(node) if not setting.choices]
+
     def edit_node(self, node: dict) -> None:
         while True:
+            width = choice_width()
             choices, actions = [], []
             for kind in KINDS:
                 choices.append(f"Add {article(kind.label)}")
                 actions.append(("add", kind))
-            message = "What next?"
-            for index, entry in enumerate(node.get("parameters") or []):
-                choices.append(fit(f"Edit parameter {entry_text('parameters', entry)}", choice_width(message)))
-                actions.append(("parameter", index))
             for kind in KINDS:
                 for index, entry in enumerate(node.get(kind.key) or []):
-                    choices.append(fit(f"Remove {kind.label} {entry_text(kind.key, entry)}", choice_width(message)))
-                    actions.append(("remove", (kind, index)))
-            choices.append(f"Rename {node['name']}")
+                    choices.append(fitting([f"Edit {form}" for form in entry_forms(kind, entry)], width))
+                    actions.append(("entry", (kind, index)))
+            choices.append(fitting([f"Rename {node['name']}", "Rename"], width))
             actions.append(("rename", None))
             if len(self.rules.languages) > 1:
                 choices.append(f"Language: {distros.LANGUAGE_NAMES.get(str(node.get('language')), '?')}")
                 actions.append(("language", None))
-            for flag in self.flags(node):
-                choices.append(f"{FLAGS[flag]}: {'yes' if node.get(flag) else 'no'}")
-                actions.append(("flag", flag))
-            choices.append(f"Done with {node['name']}")
+            for setting in self.settings(node):
+                value = node.get(setting.key)
+                shown = (value or NO_VALUE) if setting.choices else ("yes" if value else "no")
+                choices.append(fitting([f"{setting.label}: {shown}"], width))
+                actions.append(("setting", setting))
+            choices.append(fitting([f"Done with {node['name']}", "Done with this node"], width))
             actions.append(("done", None))
-            self.ask.say(fit(f"Node {node_line(node)}"))
-            picked = self.ask.select(message, choices, default=choices[-1])
+            self.ask.say(f"Node {node_line(node)}")
+            picked = self.ask.select("What next?", choices, default=choices[-1])
             if picked not in choices:
                 continue
             action, what = actions[choices.index(picked)]
             if action == "done":
                 return
             if action == "add":
-                self.add_endpoint(node, what)
-            elif action == "parameter":
-                self.edit_parameter(node, what)
-            elif action == "remove":
-                kind, index = what
-                del node[kind.key][index]
-                if not node[kind.key]:
-                    del node[kind.key]
+                self.add_entry(node, what)
+            elif action == "entry":
+                self.edit_entry(node, *what)
             elif action == "rename":
                 self._renamed(node, self._rename(node))
             elif action == "language":
                 self._change(node, "language", self._language(str(node.get("language"))))
-            elif action == "flag":
-                self._change(node, what, not node.get(what))
+            elif action == "setting":
+                self._setting(node, what)
 
-    def edit_parameter(self, node: dict, index: int) -> None:
-        """A parameter's description and rules, one at a time, each checked as the node's answer."""
-        while True:
-            mapping = parameter_mapping(node["parameters"][index])
-            ptype = parameter_type(mapping)
-            if ptype is None:
-                return
-            choices, keys = [], []
-            for key, label, _, applies in PARAMETER_RULES:
-                if not applies(ptype, self.rules.types.ros) and key not in mapping:
-                    continue
-                if key in FLAG_RULES:
-                    shown = "yes" if mapping.get(key) else "no"
-                else:
-                    shown = (mapping[key] if key == "description" else rule_text(mapping[key])) if key in mapping \
-                        else "(none)"
-                choices.append(fit(f"{label}: {shown}", choice_width("What next?")))
-                keys.append(key)
-            done = f"Done with {mapping['name']}"
-            choices.append(done)
-            self.ask.say(fit(f"Parameter {entry_text('parameters', mapping)}"))
-            picked = self.ask.select("What next?", choices, default=done)
-            if picked == done:
-                return
-            if picked not in choices:
-                continue
-            key = keys[choices.index(picked)]
-            if key in FLAG_RULES:
-                self._set_rule(node, index, mapping, key, not mapping.get(key))
-                continue
-            label, hint = next((label, hint) for name, label, hint, _ in PARAMETER_RULES if name == key)
-            current = "" if key not in mapping else mapping[key] if key == "description" else rule_text(mapping[key])
-            answer = self.ask.text(f"{label}, {hint} (empty: none)", default=current,
-                                   validate=lambda typed, key=key, mapping=mapping: self._rule_error(
-                                       node, index, mapping, key, typed))
-            self._set_rule(node, index, mapping, key, read_rule(key, answer))
-
-    def _with_rule(self, node: dict, index: int, mapping: dict, key: str, value: object) -> dict:
-        """The node with one rule of a parameter set (a value of '' or False removes it)."""
-        changed = {name: item for name, item in mapping.items() if name != key}
-        if value not in ("", False, None):
-            changed[key] = value
-        entries = list(node["parameters"])
-        entries[index] = short_parameter(changed)
-        return {**node, "parameters": entries}
-
-    def _rule_error(self, node: dict, index: int, mapping: dict, key: str, typed: str) -> str | None:
-        return self.rules.node_error(self._with_rule(node, index, mapping, key, read_rule(key, typed)))
-
-    def _set_rule(self, node: dict, index: int, mapping: dict, key: str, value: object) -> None:
-        changed = self._with_rule(node, index, mapping, key, value)
-        error = self.rules.node_error(changed)
-        if error:
-            self.ask.say(error)
+    def _setting(self, node: dict, setting: Setting) -> None:
+        if not setting.choices:
+            self._change(node, setting.key, not node.get(setting.key))
             return
-        node["parameters"] = changed["parameters"]
-
-    def flags(self, node: Mapping) -> list[str]:
-        """The yes/no keys a node may change here: diagnostics; in ROS 2 lifecycle, autostart for lifecycle nodes,
-        components in C++."""
-        if self.rules.types.ros != 2:
-            return ["diagnostics"]
-        flags = ["lifecycle", "autostart"] if node.get("lifecycle") else ["lifecycle"]
-        if node.get("language") == "cpp" or node.get("component"):
-            flags.append("component")
-        return flags + ["diagnostics"]
+        picked = self.ask.select(setting.label, [*setting.choices, NO_VALUE],
+                                 default=node.get(setting.key) or NO_VALUE)
+        self._change(node, setting.key, None if picked == NO_VALUE else picked)
 
     def _change(self, node: dict, key: str, value: object) -> None:
         """Set one key, unless the node would then break a rule: then say which, and keep it."""
         changed = {**node, key: value}
         if key == "lifecycle" and value is False:
             changed.pop("autostart", None)  # only a lifecycle node is started that way
+        changed = {name: item for name, item in changed.items() if item is not False and item is not None}
         error = self.rules.node_error(changed)
         if error:
             self.ask.say(error)
             return
         node.clear()
-        node.update((name, item) for name, item in changed.items() if item is not False)
+        node.update(changed)
 
     def _rename(self, node: dict) -> str:
         others = [other["name"] for other in self.nodes if other is not node]
@@ -460,48 +557,133 @@ class Dialog:
         """The name's own rules, then those of the node it names (a name that shadows a module...)."""
         return self.rules.name_error(name, others) or self.rules.node_error({**node, "name": name})
 
-    def _with(self, node: dict, kind: Kind, entry: str) -> dict:
-        return {**node, kind.key: [*(node.get(kind.key) or []), entry]}
+    # --- one endpoint or parameter
 
-    def _entry_error(self, node: dict, kind: Kind, entry: str) -> str | None:
-        return self.rules.node_error(self._with(node, kind, entry))
+    def _with_entry(self, node: Mapping, kind: Kind, index: int, entry: object) -> dict:
+        """The node with its entry `index` of `kind` replaced (or added, at the end)."""
+        entries = list(node.get(kind.key) or [])
+        entries[index:index + 1] = [entry]
+        return {**node, kind.key: entries}
 
-    def add_endpoint(self, node: dict, kind: Kind) -> None:
-        """Two prompts: the name, then the type (a period for a timer, type=default for a parameter)."""
-        if kind.interface:
-            what = {"msg": "topic", "srv": "service", "action": "action"}[kind.interface]
-            name = self.ask.text(f"{NAME_PROMPTS[kind.interface]} {BACK}",
-                                 validate=optional(lambda answer: names.topic_name_error(answer, what))).strip()
-            if not name:
-                return
-            choices = type_choices(kind.interface, self.rules.types.ros, self.rules.types.distro, self.found,
-                                   self.own.get(kind.interface, ()))
-            value = self.ask.text(TYPE_PROMPTS[kind.interface], complete=choices,
-                                  validate=lambda answer: self._entry_error(node, kind, short_endpoint(
-                                      name, answer))).strip()
-        elif kind.key == "timers":
+    def _entry_error(self, node: Mapping, kind: Kind, index: int, mapping: Mapping) -> str | None:
+        return self.rules.node_error(self._with_entry(node, kind, index, entry_value(kind.key, mapping)))
+
+    def _graph_type(self, kind: Kind, name: str) -> str | None:
+        """The type the package's nodes already use for a topic, service or action of this name."""
+        met = names.graph_name(name)
+        if met is None or not kind.interface:
+            return None
+        for other in self.nodes:
+            for other_kind in KINDS:
+                if other_kind.interface != kind.interface:
+                    continue
+                for entry in other.get(other_kind.key) or []:
+                    mapping = entry_mapping(other_kind.key, entry)
+                    if names.graph_name(str(mapping.get("topic", mapping.get("name", "")))) == met:
+                        return str(mapping.get("type"))
+        return None
+
+    def _ask_field(self, node: dict, kind: Kind, index: int, mapping: dict, field: Field,
+                   first: bool = False) -> bool:
+        """Ask one key of the entry, checked as the node with it; False when a first name is left empty."""
+        current = mapping.get(field.key)
+        if field.form == "bool":
+            mapping[field.key] = not current
+            return True
+        if field.form == "choice":
+            choices = [*field.choices, *([NO_VALUE] if field.optional else [])]
+            default = str(current) if current is not None else ("double" if field.key == "type" else choices[0])
+            picked = self.ask.select(field.prompt, choices, default=default if default in choices else None)
+            mapping[field.key] = None if picked == NO_VALUE else picked
+            return True
+
+        def candidate(answer: str) -> dict:
+            value = answer.strip()
+            if field.form in ("yaml", "list") and value:
+                try:
+                    value = yaml.safe_load(value)
+                    if field.form == "list" and not isinstance(value, list):
+                        value = yaml.safe_load(f"[{answer.strip()}]")
+                except yaml.YAMLError:
+                    pass  # kept as text: the node's check says what is wrong with it
+            elif field.form == "type" and kind.interface and value:
+                value = normalised_type(value, kind.interface, self.rules.types.ros)
+            return {**mapping, field.key: value if value != "" else None}
+
+        def check(answer: str) -> str | None:
+            if first:  # the entry's name alone: the rest is not given yet
+                what = {"msg": "topic", "srv": "service", "action": "action"}.get(kind.interface or "")
+                if what:
+                    return names.topic_name_error(answer.strip(), what)
+                if kind.key == "timers":
+                    return names.identifier_error(answer.strip(), "timer")
+                return names.parameter_name_error(answer.strip(), self.rules.types.ros)
+            if not answer.strip() and field.optional:
+                return self._entry_error(node, kind, index, candidate(""))
+            return self._entry_error(node, kind, index, candidate(answer))
+
+        default = "" if current is None else _yaml_text(current) if field.form in ("yaml", "list") else str(current)
+        complete: list[str] = []
+        if field.form == "type" and kind.interface:
+            used = self._graph_type(kind, str(mapping.get("topic", mapping.get("name", ""))))
+            default = default or used or ""
+            complete = type_choices(kind.interface, self.rules.types.ros, self.rules.types.distro, self.found,
+                                    self.own.get(kind.interface, ()), first=[used] if used else [])
+        prompt = f"{field.prompt} {BACK}" if first else field.prompt
+        answer = self.ask.text(prompt, default=default, validate=optional(check) if first else check,
+                               complete=complete)
+        if first and not answer.strip():
+            return False
+        mapping.update(candidate(answer))
+        return True
+
+    def add_entry(self, node: dict, kind: Kind) -> None:
+        """The keys asked of a new entry, one prompt each: its name first (empty: back)."""
+        fields = [field for field in ENTRY_FIELDS[kind.key] if field.asked]
+        index = len(node.get(kind.key) or [])
+        mapping: dict = {}
+        if kind.key == "timers":
             taken = {timer_name(entry) for entry in node.get("timers") or []}
-            suggested = next(name for name in ("timer", *(f"timer{n}" for n in range(2, 100))) if name not in taken)
-            name = self.ask.text(f"Timer name {BACK}", default=suggested,
-                                 validate=optional(lambda answer: names.identifier_error(answer, "timer"))).strip()
-            if not name:
+            mapping["name"] = next(name for name in ("timer", *(f"timer{n}" for n in range(2, 100)))
+                                   if name not in taken)
+        for position, field in enumerate(fields):
+            if not self._ask_field(node, kind, index, mapping, field, first=position == 0):
                 return
-            value = self.ask.text("Period in seconds (e.g. 0.1)",
-                                  validate=lambda answer: self._entry_error(node, kind, short_endpoint(
-                                      name, answer))).strip()
-        else:
-            ros = self.rules.types.ros
-            name = self.ask.text(f"Parameter name {BACK}",
-                                 validate=optional(lambda answer: names.parameter_name_error(answer, ros))).strip()
-            if not name:
+        node[kind.key] = [*(node.get(kind.key) or []), entry_value(kind.key, mapping)]
+
+    def edit_entry(self, node: dict, kind: Kind, index: int) -> None:
+        """An entry's menu: each of its keys with its value, changed in place; or remove it."""
+        while True:
+            entries = node.get(kind.key) or []
+            if index >= len(entries):
                 return
-            ptype = self.ask.select("Parameter type", PARAMETER_TYPES, default="double") or "double"
-
-            def typed(answer: str) -> str:
-                return f"{ptype}={answer.strip()}" if answer.strip() else ptype
-
-            default = self.ask.text("Default value (e.g. 1.5, true, text, [1, 2])",
-                                    validate=lambda answer: self._entry_error(node, kind, short_endpoint(
-                                        name, typed(answer))))
-            value = typed(default)
-        node[kind.key] = [*(node.get(kind.key) or []), short_endpoint(name, value)]
+            mapping = entry_mapping(kind.key, entries[index])
+            width = choice_width()
+            choices, fields = [], []
+            for field in ENTRY_FIELDS[kind.key]:
+                value = mapping.get(field.key)
+                if field.form == "bool":
+                    shown = "yes" if value else "no"
+                else:
+                    shown = NO_VALUE if value in (None, "") else _yaml_text(value)
+                choices.append(fitting([f"{field.label}: {shown}", f"{field.label}"], width))
+                fields.append(field)
+            choices.extend([f"Remove this {kind.label}", "Done"])
+            picked = self.ask.select(fitting([f"The {kind.label} {entry_text(kind.key, entries[index])}:",
+                                              f"The {kind.label}:"], terminal.width() - 3), choices,
+                                     default="Done")
+            if picked == "Done" or picked not in choices:
+                return
+            if picked == f"Remove this {kind.label}":
+                del node[kind.key][index]
+                if not node[kind.key]:
+                    del node[kind.key]
+                return
+            field = fields[choices.index(picked)]
+            changed = dict(mapping)
+            self._ask_field(node, kind, index, changed, field)
+            error = self._entry_error(node, kind, index, changed)
+            if error:  # a yes/no or a choice breaks a rule: said, and the entry stays
+                self.ask.say(error)
+                continue
+            node[kind.key][index] = entry_value(kind.key, changed)

@@ -7,12 +7,11 @@ non-interactive run.
 
 from __future__ import annotations
 
-import builtins
-import keyword
 import re
-import sys
 import unicodedata
 from collections import Counter
+
+from . import python_names
 
 CPP_KEYWORDS = frozenset(
     """
@@ -57,9 +56,7 @@ ROS2_DECLARED_PARAMETERS = frozenset({"use_sim_time", "start_type_description_se
 # Names a type cannot take: Python's keywords and built-in names (generated modules and
 # the nodes import types by name) and the C macros every C++ file sees.
 _C_MACROS = frozenset({"NULL", "EOF", "TRUE", "FALSE", "NAN", "INFINITY"})
-RESERVED_TYPE_NAMES = frozenset(
-    {name for name in dir(builtins) if name[:1].isupper()} | {"None", "True", "False"} | _C_MACROS
-)
+RESERVED_TYPE_NAMES = frozenset(python_names.CAPITALIZED_BUILTINS | {"None", "True", "False"} | _C_MACROS)
 
 # Names a field of a C++ struct cannot take besides keywords: GCC's GNU dialect (CMake's default)
 # defines `linux` and `unix` as 1, and a field named like a type the struct spells hides it.
@@ -85,29 +82,29 @@ def too_long(name: str, limit: int, what: str = "") -> str | None:
     """The length rule every generated name follows, so that generated lines fit 100 columns."""
     if len(name) <= limit:
         return None
-    return f"{what}{quoted(name)} is {len(name)} characters long: at most {limit}, so generated lines fit 100 columns"
+    return (f"shorten it to at most {limit} characters: {what}{quoted(name)} is {len(name)} long "
+            "(so that generated lines fit 100 columns)")
 
 
 def keyword_error(name: str) -> str | None:
     """Names that become modules, namespaces or fields cannot be language keywords."""
-    if keyword.iskeyword(name) or keyword.issoftkeyword(name):
-        return f"'{name}' is a Python keyword"
+    if name in python_names.KEYWORDS or name in python_names.SOFT_KEYWORDS:
+        return f"choose another name: '{name}' is a Python keyword"
     if name in CPP_KEYWORDS:
-        return f"'{name}' is a C++ keyword"
+        return f"choose another name: '{name}' is a C++ keyword"
     return None
 
 
 def package_name_error(name: object) -> str | None:
     """REP 144 package names, which also become a C++ namespace and a Python package."""
     if not isinstance(name, str) or not name:
-        return "a package name is required"
+        return "give a package name"
     if not PACKAGE_NAME.fullmatch(name):
-        return (
-            f"'{name}' breaks REP 144: use lowercase letters, digits and single "
-            "underscores, starting with a letter"
-        )
+        return _use(_passing(snake_case_of(name), package_name_error),
+                    f"'{name}' breaks REP 144 (lowercase letters, digits and single underscores, starting with "
+                    "a letter)")
     if len(name) < 2:
-        return f"'{name}' breaks REP 144: a package name has at least two characters"
+        return f"give it at least two characters: '{name}' breaks REP 144"
     return keyword_error(name)
 
 
@@ -119,28 +116,30 @@ def generated_package_name_error(name: object) -> str | None:
     if too_long(name, PACKAGE_NAME_MAX):
         return too_long(name, PACKAGE_NAME_MAX)
     if name == "test":
-        return "'test' is left out of Python packages by setup.py's find_packages(exclude=['test'])"
-    if name in sys.stdlib_module_names:
-        return f"'{name}' is a module of Python's standard library, which the package's own module would shadow"
+        return ("choose another name: 'test' is left out of Python packages by setup.py's "
+                "find_packages(exclude=['test'])")
+    if name in python_names.STDLIB_MODULES:
+        return (f"choose another name: '{name}' is a module of Python's standard library, which the package's "
+                "own module would shadow")
     return None
 
 
 def node_name_error(name: object) -> str | None:
     """ROS node names that also name a source file, a Python module and a class."""
     if not isinstance(name, str) or not name:
-        return "a node name is required"
+        return "give a node name"
     if not SNAKE_CASE.fullmatch(name):
-        return (
-            f"'{name}' is not a valid node name: use lower_snake_case (letters, digits and "
-            "single underscores, starting with a letter)"
-        )
+        return _use(_passing(snake_case_of(name), node_name_error),
+                    f"'{name}' is not a valid node name (lower_snake_case: letters, digits and single underscores, "
+                    "starting with a letter)")
     if too_long(name, NODE_NAME_MAX):
         return too_long(name, NODE_NAME_MAX)
     if name.endswith("_base"):
-        return f"'{name}' ends in '_base', which is kept for the generated base classes"
+        return _use(_passing(name.removesuffix("_base"), node_name_error),
+                    f"'{name}' ends in '_base', which is kept for the generated base classes")
     if snake_to_camel(name) in AMBIGUOUS_NAMES:
-        return (f"'{name}' would name its class {snake_to_camel(name)}, which flake8 refuses as ambiguous "
-                "(E742); give it a longer name")
+        return (f"give it a longer name: '{name}' would name its class {snake_to_camel(name)}, which flake8 "
+                "refuses as ambiguous (E742)")
     return keyword_error(name)
 
 
@@ -151,58 +150,57 @@ def topic_name_error(name: object, what: str = "topic") -> str | None:
     derived from the name.
     """
     if not isinstance(name, str) or not name:
-        return f"a {what} name is required"
+        return f"give a {what} name"
     if too_long(name, ROS_NAME_MAX):
         return too_long(name, ROS_NAME_MAX, f"{what} ")
     if "{" in name or "}" in name:
-        return f"{what} '{name}': substitutions like {{node}} are not supported here"
+        return f"{what} '{name}': write it without substitutions like {{node}}, which are not supported here"
     rest = name
     if rest.startswith("~"):
         rest = rest[1:]
         if rest and not rest.startswith("/"):
-            return f"{what} '{name}': '~' must be followed by '/'"
+            return f"{what} '{name}': use ~/{rest}: '~' must be followed by '/'"
         rest = rest[1:]
     elif rest.startswith("/"):
         rest = rest[1:]
     if not rest:
-        return f"{what} '{name}' has no name after its prefix"
+        return f"{what} '{name}': give a name after its prefix"
     if rest.endswith("/"):
-        return f"{what} '{name}' must not end with '/'"
+        return f"{what} '{name}': " + _use(_passing(name.rstrip("/"), topic_name_error), "it must not end with '/'")
     for token in rest.split("/"):
         if not token:
-            return f"{what} '{name}' must not contain '//'"
+            return f"{what} '{name}': " + _use(_passing(re.sub("/+", "/", name), topic_name_error),
+                                                "it must not contain '//'")
         if not NAME_TOKEN.fullmatch(token):
-            return (
-                f"{what} '{name}': each part between '/' uses letters, digits and '_' "
-                "and does not start with a digit"
-            )
+            return f"{what} '{name}': " + _use(_passing(ros_name_of(name), topic_name_error),
+                                                "each part between '/' uses letters, digits and '_' and does not "
+                                                "start with a digit")
     return None
 
 
 def parameter_name_error(name: object, ros: int = 2) -> str | None:
     """Parameter names: snake_case, valid as a ROS 1 and a ROS 2 parameter name and as a member."""
     if not isinstance(name, str) or not name:
-        return "a parameter name is required"
+        return "give a parameter name"
     if not SNAKE_CASE.fullmatch(name):
-        return (
-            f"'{name}' is not a valid parameter name: use lower_snake_case (letters, digits "
-            "and single underscores, starting with a letter)"
-        )
+        return _use(_passing(snake_case_of(name), lambda n: parameter_name_error(n, ros)),
+                    f"'{name}' is not a valid parameter name (lower_snake_case: letters, "
+                    "digits and single underscores, starting with a letter)")
     if too_long(name, IDENTIFIER_MAX):
         return too_long(name, IDENTIFIER_MAX, "parameter ")
     if ros == 2 and name in ROS2_DECLARED_PARAMETERS:
-        return f"parameter '{name}' is declared by ROS 2 itself on every node"
+        return f"choose another name: parameter '{name}' is declared by ROS 2 itself on every node"
     # ROS 1 nodes keep each parameter in a member named after it (self.<name>, <name>_).
     if ros == 1 and name in AMBIGUOUS_NAMES:
-        return (f"parameter '{name}': a ROS 1 node keeps it in a member named after it, self.{name} in Python, "
-                "which flake8 refuses as ambiguous (E741); give it a longer name")
+        return (f"give parameter '{name}' a longer name: a ROS 1 node keeps it in a member named after it, "
+                f"self.{name} in Python, which flake8 refuses as ambiguous (E741)")
     return keyword_error(name)
 
 
 def identifier_error(name: object, what: str) -> str | None:
     """A code name for an endpoint or a timer, given or derived from a ROS name."""
     if not isinstance(name, str) or not SNAKE_CASE.fullmatch(name):
-        return f"{what} '{name}' must be lower_snake_case"
+        return f"{what} '{name}': " + _use(_passing(snake_case_of(name), keyword_error), "it must be lower_snake_case")
     if too_long(name, IDENTIFIER_MAX):
         return too_long(name, IDENTIFIER_MAX, f"{what} ")
     return keyword_error(name)
@@ -211,7 +209,7 @@ def identifier_error(name: object, what: str) -> str | None:
 def type_name_error(name: str) -> str | None:
     """A message, service or action name beyond CamelCase: one every generated language can use."""
     if name in RESERVED_TYPE_NAMES:
-        return f"'{name}' is a Python keyword, a Python built-in or a C macro"
+        return f"choose another name: '{name}' is a Python keyword, a Python built-in or a C macro"
     if too_long(name, TYPE_NAME_MAX):
         return too_long(name, TYPE_NAME_MAX)
     return None
@@ -221,14 +219,14 @@ def header_path_error(package: str, kind: str, name: str) -> str | None:
     """A type's C++ header path (rosidl's <package>/<kind>/<type_in_snake_case>.hpp) must fit a line."""
     path = f"{package}/{kind}/{camel_to_snake(name)}.hpp"
     if len(path) > HEADER_PATH_MAX:
-        return (f"its C++ header {quoted(path, 60)} is {len(path)} characters long: at most {HEADER_PATH_MAX} "
-                "(a shorter type or package name)")
+        return (f"give it a shorter type or package name: its C++ header {quoted(path, 60)} is {len(path)} "
+                f"characters long, at most {HEADER_PATH_MAX}")
     return None
 
 
 def email_error(address: object) -> str | None:
     if not isinstance(address, str) or not EMAIL.fullmatch(address.strip()):
-        return f"'{address}' is not an e-mail address catkin_pkg accepts (name@host.domain)"
+        return f"write it as name@host.domain: '{address}' is not an e-mail address catkin_pkg accepts"
     return None
 
 
@@ -289,11 +287,43 @@ def with_suffix(identifier: str, suffix: str) -> str:
     return f"{identifier}_{suffix}"
 
 
-def package_name_from_folder(folder: str) -> str:
-    """A REP 144 default for the package name from the destination folder's name."""
-    name = re.sub(r"(?<=[a-z0-9])(?=[A-Z])", "_", folder).lower()
+def snake_case_of(text: object) -> str | None:
+    """The lower_snake_case name closest to `text`, for an error to suggest: 'Motor-Driver',
+    'motor driver' and 'MotorDriver' -> 'motor_driver'; None when no letter is left."""
+    if not isinstance(text, str):
+        return None
+    name = re.sub(r"(?<=[a-z0-9])(?=[A-Z])", "_", text.strip()).lower()
     name = re.sub(r"[^a-z0-9]+", "_", name).strip("_")
     name = re.sub(r"^[0-9_]+", "", name)
+    return name if SNAKE_CASE.fullmatch(name) else None
+
+
+def ros_name_of(text: str) -> str | None:
+    """The topic, service or action name closest to `text`: each part between '/' made a valid
+    token ('cmd vel' -> 'cmd_vel', 'camera/2d-image' -> 'camera/d_image'); None when one has nothing left."""
+    prefix = "~/" if text.startswith("~/") else "/" if text.startswith("/") else ""
+    tokens = []
+    for token in text[len(prefix):].split("/"):
+        token = re.sub(r"^[0-9_]+", "", re.sub(r"[^A-Za-z0-9_]+", "_", token.strip()).strip("_"))
+        if not token:
+            return None
+        tokens.append(token)
+    return prefix + "/".join(tokens)
+
+
+def _passing(suggestion: str | None, check) -> str | None:
+    """The suggestion, if the rules it is suggested for take it."""
+    return suggestion if suggestion is not None and check(suggestion) is None else None
+
+
+def _use(suggestion: str | None, problem: str) -> str:
+    """An error that leads with its fix: 'use motor_driver: <problem>', or the problem alone."""
+    return f"use {suggestion}: {problem}" if suggestion else problem
+
+
+def package_name_from_folder(folder: str) -> str:
+    """A REP 144 default for the package name from the destination folder's name."""
+    name = snake_case_of(folder) or ""
     return name if package_name_error(name) is None else "my_package"
 
 

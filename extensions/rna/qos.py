@@ -93,10 +93,10 @@ KEYS = ("preset", "depth", *POLICIES)
 
 def _depth(value: object) -> int:
     if isinstance(value, bool) or not (isinstance(value, int) or (isinstance(value, str) and value.isdigit())):
-        raise ValueError(f"qos depth must be a whole number, not {value!r}")
+        raise ValueError(f"give the qos depth as a whole number, not {value!r}")
     depth = int(value)
     if not DEPTH_RANGE[0] <= depth <= DEPTH_RANGE[1]:
-        raise ValueError(f"qos depth {depth} must be between {DEPTH_RANGE[0]} and {DEPTH_RANGE[1]}")
+        raise ValueError(f"give a qos depth between {DEPTH_RANGE[0]} and {DEPTH_RANGE[1]}, not {depth}")
     return depth
 
 
@@ -119,27 +119,28 @@ def parse(value: object) -> Qos:
         except ValueError:
             if isinstance(value, int) or value.strip().isdigit():
                 raise
-        raise ValueError(f"qos must be a history depth (e.g. 10) or one of {', '.join(PRESETS)}, not {value!r}")
+        raise ValueError(f"give qos as a history depth (e.g. 10) or one of {', '.join(PRESETS)}, not {value!r}")
     if not isinstance(value, Mapping):
-        raise ValueError(f"qos must be a history depth (e.g. 10), one of {', '.join(PRESETS)}, or a mapping "
+        raise ValueError(f"give qos as a history depth (e.g. 10), one of {', '.join(PRESETS)}, or a mapping "
                          f"of {', '.join(KEYS)}")
     unknown = [key for key in value if key not in KEYS]
     if unknown:
-        raise ValueError(f"qos has no key {unknown[0]!r}: give {', '.join(KEYS)}")
+        raise ValueError(f"use {', '.join(KEYS)}: qos has no key {unknown[0]!r}")
     preset = value.get("preset", "default")
     if preset not in PRESETS:
-        raise ValueError(f"qos preset must be one of {', '.join(PRESETS)}, not {preset!r}")
+        raise ValueError(f"use a qos preset of {', '.join(PRESETS)}, not {preset!r}")
     if preset == "system_default" and len(value) > 1:
-        raise ValueError("qos preset system_default is the middleware's defaults: give it no other key")
+        raise ValueError("give qos preset system_default no other key: it is the middleware's defaults")
     qos = PRESETS[preset]
     for key, allowed in POLICIES.items():
         if key in value:
             if value[key] not in allowed:
-                raise ValueError(f"qos {key} must be one of {', '.join(allowed)}, not {value[key]!r}")
+                raise ValueError(f"give qos {key} one of {', '.join(allowed)}, not {value[key]!r}")
             qos = replace(qos, **{key: value[key]})
     if "depth" in value:
         if qos.history != "keep_last":
-            raise ValueError(f"qos depth applies to history keep_last, not {qos.history}")
+            raise ValueError(f"leave out the qos depth, or keep history keep_last: depth applies to it, not to "
+                             f"{qos.history}")
         qos = replace(qos, depth=_depth(value["depth"]))
     return _named(qos)
 

@@ -8,16 +8,14 @@ rules that look at several answers at once, the catalogue of standard types).
 
 from __future__ import annotations
 
-import keyword
-
-from . import distros, layout, names
+from . import distros, layout, names, python_names
 from . import qos as qos_rules
 from .answers import QUICK_LISTS
 from .definitions import SECTIONS
 from .licenses import LICENSES
 from .parameters import INT_RANGE, SCALAR_TYPES, TYPE_ALIASES
 
-_KEYWORDS = sorted({*keyword.kwlist, *keyword.softkwlist, *names.CPP_KEYWORDS})
+_KEYWORDS = sorted({*python_names.KEYWORDS, *python_names.SOFT_KEYWORDS, *names.CPP_KEYWORDS})
 _ROS_NAME = r"^(~/|/)?[A-Za-z_][A-Za-z0-9_]*(/[A-Za-z_][A-Za-z0-9_]*)*$"
 _TYPE = r"^([a-z](?:[a-z0-9]|_(?=[a-z0-9]))*/((msg|srv|action)/)?)?[A-Z][A-Za-z0-9]*$"
 

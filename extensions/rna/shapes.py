@@ -50,7 +50,7 @@ def as_list(value: object, what: str) -> list:
     if isinstance(value, str):
         return split_list(value)
     if not isinstance(value, list):
-        raise ValueError(f"{what} must be a list")
+        raise ValueError(f"write {what} as a list")
     return value
 
 
@@ -60,5 +60,5 @@ def check_keys(item: Mapping, allowed: Iterable[str], what: str) -> None:
     for key in item:
         if key not in allowed:
             close = difflib.get_close_matches(str(key), allowed, n=1)
-            hint = f" (did you mean '{close[0]}'?)" if close else f" (known: {', '.join(allowed)})"
-            raise ValueError(f"{what + ': ' if what else ''}unknown key '{key}'{hint}")
+            fix = f"did you mean '{close[0]}'?" if close else f"use {', '.join(allowed)}:"
+            raise ValueError(f"{what + ': ' if what else ''}{fix} unknown key '{key}'")

@@ -48,6 +48,14 @@ def node_summary(node) -> str:
     """The node's description, or a sentence made from what it does."""
     if node.description:
         return node.description if node.description.endswith(".") else node.description + "."
+    parts = summary_parts(node)
+    if not parts:
+        return f"The {node.name} node."
+    return capitalised(english_list(parts)) + "."
+
+
+def summary_parts(node) -> list[str]:
+    """What a node does, one clause per kind of endpoint: 'publishes cmd_vel', 'subscribes to odom'..."""
     parts = []
     if node.publishers:
         parts.append("publishes " + english_list(t.topic for t in node.publishers))
@@ -63,9 +71,7 @@ def node_summary(node) -> str:
         parts.append("sends " + english_list(a.name for a in node.action_clients) + " goals")
     if node.diagnostics:
         parts.append("reports its status on /diagnostics")
-    if not parts:
-        return f"The {node.name} node."
-    return capitalised(english_list(parts)) + "."
+    return parts
 
 
 def summary_lines(node, width: int = 88) -> list[str]:
@@ -95,12 +101,21 @@ def driver_docstring(node) -> str:
     return capitalised(english_list(work)) + "."
 
 
-def describe_nodes(nodes) -> str:
-    """A package description from its nodes: what each does, or their names."""
-    if len(nodes) > 3:
-        return "Nodes " + english_list(node.name for node in nodes)
-    if any(node.description for node in nodes):
-        return " ".join(node_summary(node) for node in nodes)
-    text = "; ".join(f"the {node.name} node {node_summary(node)[0].lower()}{node_summary(node)[1:-1]}"
-                     for node in nodes)
-    return capitalised(text)
+def describe_nodes(nodes, width: int | None = None) -> str:
+    """A package description from its nodes: what each does, or their names; with `width`, the
+    most it can say in that many columns (a prompt shows it as its default, on one line)."""
+    forms = []
+    if len(nodes) <= 3:
+        if any(node.description for node in nodes):
+            forms.append(" ".join(node_summary(node) for node in nodes))
+        else:
+            forms.append(capitalised("; ".join(f"the {node.name} node {node_summary(node)[0].lower()}"
+                                               f"{node_summary(node)[1:-1]}" for node in nodes)))
+    if len(nodes) == 1 and not nodes[0].description:  # fewer of what it does
+        parts = summary_parts(nodes[0])
+        forms.extend(f"The {nodes[0].name} node {english_list(parts[:count])}"
+                     for count in range(len(parts) - 1, 0, -1))
+    forms.append("Nodes " + english_list(node.name for node in nodes) if len(nodes) > 1
+                 else f"The {nodes[0].name} node")
+    forms.append(f"{len(nodes)} ROS nodes" if len(nodes) > 1 else "A ROS node")
+    return next((form for form in forms if width is None or len(form) <= width), forms[-1])

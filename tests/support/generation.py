@@ -51,6 +51,12 @@ def subprocess_env() -> dict[str, str]:
     return {**os.environ, **GIT_IDENTITY, "NO_COLOR": "1", "GIT_CONFIG_NOSYSTEM": "1"}
 
 
+def copier_installed_by_pipx() -> dict[str, str]:
+    """The environment of a Copier on the user's PATH (pipx's way), not one that came through
+    tests/env, whose messages name that script instead (rna/terminal.py, copier_command)."""
+    return {key: value for key, value in os.environ.items() if key != "RNA_TEMPLATE_ENV"}
+
+
 def copy_counted(instrumentation: str, template: Path, destination: Path, answers: dict,
                  env: dict[str, str] | None = None) -> object:
     """`copier copy` of the template's HEAD in a Python process of its own, after `instrumentation`
@@ -70,6 +76,17 @@ def copy_counted(instrumentation: str, template: Path, destination: Path, answer
     assert result.returncode == 0, result.stdout + result.stderr
     line = next(line for line in result.stdout.splitlines() if line.startswith("COUNTED "))
     return json.loads(line.removeprefix("COUNTED "))
+
+
+def tree(root: Path) -> dict[str, tuple[bytes, bool]]:
+    """Every file under `root` (`.git` aside), by relative path: its bytes and whether it is executable."""
+    return {str(path.relative_to(root)): (path.read_bytes(), os.access(path, os.X_OK))
+            for path in sorted(root.rglob("*")) if path.is_file() and ".git" not in path.relative_to(root).parts}
+
+
+def differences(left: dict, right: dict) -> list[str]:
+    """The paths where two trees differ (a file only in one, other bytes, another executable bit)."""
+    return sorted(name for name in left.keys() | right.keys() if left.get(name) != right.get(name))
 
 
 def git(*args: str, cwd: Path, check: bool = True) -> subprocess.CompletedProcess:

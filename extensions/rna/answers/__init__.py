@@ -248,11 +248,10 @@ class Answers:
             lab_files=() if read["target"] == "node" else tuple(lab_choices.files(self.lab)),
         )
 
-    @property
-    def default_description(self) -> str:
-        """What the nodes answered so far do, as the package's default description."""
+    def default_description(self, width: int | None = None) -> str:
+        """What the nodes answered so far do, as the package's default description, in `width` columns."""
         try:
-            return wording.describe_nodes(self.nodes)
+            return wording.describe_nodes(self.nodes, width)
         except ValueError:
             return "ROS nodes"
 

@@ -8,15 +8,14 @@ from __future__ import annotations
 
 import math
 import re
-import sys
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 
 import yaml
 
-from .. import catalogue, distros, names
+from .. import catalogue, distros, names, python_names
 from .. import qos as qos_rules
-from ..interfaces import InterfaceType, parse_interface
+from ..interfaces import InterfaceType, normalised_type, parse_interface
 from ..model import (AUTOSTART_PARAMETER, BASE_MEMBERS, DIAGNOSTICS_TASK, PARAMETERS_HOOK, Action, Node, Service,
                      Timer, Topic)
 from ..qos import Qos
@@ -39,11 +38,39 @@ class Types:
         """`pkg/kind/Name`, `pkg/Name`, or the bare `Name` of an interface defined here."""
         if isinstance(text, str) and (kind, text.strip()) in self.own:
             return self.own[(kind, text.strip())]
-        interface = parse_interface(text, kind, self.ros)
+        interface = parse_interface(normalised_type(text, kind, self.ros), kind, self.ros)
         error = self.distro and catalogue.unknown_type_error(interface.package, kind, interface.name, self.distro)
         if error:
             raise ValueError(error)
         return interface
+
+
+# The keys of a node whose entries name a type, and the kind of that type.
+TYPED_KEYS = {"publishers": "msg", "subscribers": "msg", "service_servers": "srv", "service_clients": "srv",
+              "action_servers": "action", "action_clients": "action"}
+
+
+def normalised_entry(entry: object, kind: str, ros: int) -> object:
+    """An endpoint (short form or mapping) with its type spelled as its ROS generation does
+    (interfaces.normalised_type); everything else as given."""
+    if isinstance(entry, str) and ":" in entry:
+        name, _, rest = entry.partition(":")
+        type_text, colon, qos = rest.partition(":") if kind == "msg" else (rest, "", "")
+        written = normalised_type(type_text.strip(), kind, ros)
+        return entry if written == type_text.strip() else f"{name}:{written}{colon}{qos}"
+    if isinstance(entry, Mapping) and isinstance(entry.get("type"), str):
+        written = normalised_type(entry["type"].strip(), kind, ros)
+        return entry if written == entry["type"].strip() else {**entry, "type": written}
+    return entry
+
+
+def normalised_nodes(nodes: object, ros: int) -> object:
+    """The `nodes` answer with every endpoint's type spelled for `ros` (a list of nodes; else as given)."""
+    if not isinstance(nodes, list):
+        return nodes
+    return [{**node, **{key: [normalised_entry(entry, kind, ros) for entry in node[key]]
+                        for key, kind in TYPED_KEYS.items() if isinstance(node.get(key), list)}}
+            if isinstance(node, Mapping) else node for node in nodes]
 
 
 def _split_short(text: str, fields: int) -> list[str]:
@@ -68,11 +95,11 @@ def _parse_id(given: object, ros_name: str, what: str) -> str:
         return str(given)
     derived = names.identifier_from_name(ros_name)
     if not derived[:1].isalpha():  # '/_1/x' gives '1_x', and members like 1_x_publisher do not compile
-        raise ValueError(f"{what}: the code name derived from it, {names.quoted(derived)}, does not start with "
-                         "a letter: give the endpoint an `id`")
+        raise ValueError(f"{what}: give the endpoint an `id`: the code name derived from it, {names.quoted(derived)}, "
+                         "does not start with a letter")
     if names.too_long(derived, names.IDENTIFIER_MAX):
-        raise ValueError(f"{what}: the code name derived from it, {names.quoted(derived)}, is {len(derived)} "
-                         f"characters long (at most {names.IDENTIFIER_MAX}): give the endpoint a shorter `id`")
+        raise ValueError(f"{what}: give the endpoint a shorter `id`: the code name derived from it, "
+                         f"{names.quoted(derived)}, is {len(derived)} characters long (at most {names.IDENTIFIER_MAX})")
     return derived
 
 
@@ -83,7 +110,7 @@ def _parse_topic(item: object, role: str, types: Types) -> Topic:
             raise ValueError(f"{role} '{item}': write it as topic:type, e.g. chatter:std_msgs/msg/String")
         item = dict(zip(("topic", "type", "qos"), parts, strict=False))
     if not isinstance(item, Mapping):
-        raise ValueError(f"a {role} must be 'topic:type' or a mapping with topic and type")
+        raise ValueError(f"write a {role} as 'topic:type' or a mapping with topic and type")
     check_keys(item, ("topic", "type", "qos", "id"), role)
     topic = item.get("topic")
     what = f"{role} '{topic}'"
@@ -104,7 +131,7 @@ def _parse_service_or_action(item: object, cls: type, kind: str, role: str, type
             raise ValueError(f"{what} '{item}': write it as name:type, e.g. {example}")
         item = dict(zip(("name", "type"), parts, strict=True))
     if not isinstance(item, Mapping):
-        raise ValueError(f"a {what} must be 'name:type' or a mapping with name and type")
+        raise ValueError(f"write a {what} as 'name:type' or a mapping with name and type")
     check_keys(item, ("name", "type", "id"), what)
     name = item.get("name")
     error = names.topic_name_error(name, "service" if kind == "srv" else "action")
@@ -121,7 +148,7 @@ def _parse_timer(item: object) -> Timer:
         parts = _split_short(item, 2)
         item = {"period": parts[0]} if len(parts) == 1 else {"name": parts[0], "period": parts[1]}
     if not isinstance(item, Mapping):
-        raise ValueError("a timer must be a period in seconds, 'name:period' or a mapping")
+        raise ValueError("write a timer as a period in seconds, 'name:period' or a mapping")
     check_keys(item, ("name", "period"), "timer")
     name = item.get("name", "timer")
     error = names.identifier_error(name, "timer")
@@ -131,11 +158,12 @@ def _parse_timer(item: object) -> Timer:
     try:
         period = float(period)
     except (TypeError, ValueError):
-        raise ValueError(f"timer '{name}': period '{period}' is not a number of seconds") from None
+        raise ValueError(f"timer '{name}': give the period in seconds, e.g. 0.1: '{period}' is not a number") from None
     if not 0 < period <= 86400:
-        raise ValueError(f"timer '{name}': period must be more than 0 s and at most a day")
+        raise ValueError(f"timer '{name}': give a period of more than 0 s and at most a day, not {period:g} s")
     if period < 1e-9:  # the generated code counts nanoseconds: a shorter period is a timer that never waits
-        raise ValueError(f"timer '{name}': period {period} s is shorter than a nanosecond, what ROS timers count in")
+        raise ValueError(f"timer '{name}': give a period of at least a nanosecond, what ROS timers count in: "
+                         f"{period} s is shorter")
     return Timer(name, period)
 
 
@@ -156,9 +184,10 @@ def _parse_parameter(item: object, ros: int) -> Parameter:
             try:
                 item["default"] = yaml.safe_load(match["default"])
             except yaml.YAMLError:
-                raise ValueError(f"parameter '{match['name']}': cannot read the default '{match['default']}'") from None
+                raise ValueError(f"parameter '{match['name']}': write the default as YAML (e.g. 1.5, true, [1, 2]): "
+                                 f"'{match['default']}' does not read as YAML") from None
     if not isinstance(item, Mapping):
-        raise ValueError("a parameter must be 'name:type=default' or a mapping with name, type and default")
+        raise ValueError("write a parameter as 'name:type=default' or a mapping with name, type and default")
     check_keys(item, PARAMETER_KEYS, "parameter")
     name = item.get("name")
     error = names.parameter_name_error(name, ros)
@@ -176,13 +205,13 @@ def _parse_parameter(item: object, ros: int) -> Parameter:
     except ValueError as error:
         raise ValueError(f"{what}: {error}") from None
     if ptype.is_array and not default:
-        raise ValueError(f"{what}: array parameters need a non-empty default")
+        raise ValueError(f"{what}: give it a default that is not empty: array parameters need one")
     description = item.get("description") or ""
     if description and names.one_line_error(description):
         raise ValueError(f"{what}: description: {names.one_line_error(description)}")
     read_only = item.get("read_only", False)
     if not isinstance(read_only, bool):
-        raise ValueError(f"{what}: read_only must be true or false")
+        raise ValueError(f"{what}: set read_only to true or false")
     value_range = _parse_range(item.get("range"), ptype, default, what, ros)
     not_empty = _parse_not_empty(item.get("not_empty", False), ptype, default, what)
     one_of = _parse_one_of(item.get("one_of"), ptype, default, value_range, not_empty, what, ros)
@@ -326,7 +355,7 @@ def _check_unique(items: Iterable[tuple[str, str]]) -> None:
     seen: dict[str, str] = {}
     for name, label in items:
         if name in seen:
-            raise ValueError(f"{seen[name]} and {label} both use the name '{name}'")
+            raise ValueError(f"give each a name of its own: {seen[name]} and {label} both use the name '{name}'")
         seen[name] = label
 
 
@@ -340,7 +369,7 @@ def parse_node(item: object, *, package: str, build_type: str, types: Types) -> 
     if isinstance(item, str):
         item = {"name": item}
     if not isinstance(item, Mapping):
-        raise ValueError("each node must be a mapping with at least a name")
+        raise ValueError("write each node as a mapping with at least a name")
     name = item.get("name")
     error = names.node_name_error(name)
     if error:
@@ -353,7 +382,7 @@ def parse_node(item: object, *, package: str, build_type: str, types: Types) -> 
             raise ValueError(f"renamed_from: {names.node_name_error(item['renamed_from'])}")
         language = distros.LANGUAGES.get(str(item.get("language") or distros.default_language(build_type)).lower())
         if language is None:
-            raise ValueError(f"language '{item.get('language')}' is not cpp or python")
+            raise ValueError(f"use cpp or python: language '{item.get('language')}' is neither")
         error = distros.language_error(build_type, language)
         if error:
             raise ValueError(error)
@@ -361,18 +390,20 @@ def parse_node(item: object, *, package: str, build_type: str, types: Types) -> 
         for flag in ("lifecycle", "autostart", "component", "diagnostics"):
             flags[flag] = item.get(flag, False)
             if not isinstance(flags[flag], bool):
-                raise ValueError(f"{flag} must be true or false")
+                raise ValueError(f"set {flag} to true or false")
         if ros == 1 and (flags["lifecycle"] or flags["component"]):
-            raise ValueError("lifecycle and component nodes are ROS 2 features")
+            raise ValueError("leave out lifecycle and component: they are ROS 2 features")
         if flags["component"] and language != "cpp":
-            raise ValueError("components are C++ nodes (rclcpp_components)")
+            raise ValueError("make it a C++ node to make it a component: components are C++ nodes "
+                             "(rclcpp_components)")
         if flags["autostart"] and not flags["lifecycle"]:
             raise ValueError("autostart is for lifecycle nodes: set lifecycle: true as well")
         description = item.get("description") or ""
         if description and names.one_line_error(description):
             raise ValueError(f"description: {names.one_line_error(description)}")
         if '"""' in description:
-            raise ValueError('description: three double quotes (""") would end the Python docstring it goes in')
+            raise ValueError('description: write it without three double quotes ("""), which would end the Python '
+                             'docstring it goes in')
         node = Node(
             name=name,
             language=language,
@@ -412,15 +443,17 @@ def _check_script_name(node: Node) -> None:
     if node.ros != 1 or not node.is_python:
         return
     imported = {node.package, *node.dependencies}
-    if node.name in imported or node.name in sys.stdlib_module_names:
-        raise ValueError(f"its script {node.executable} would shadow the Python module '{node.name}' it needs")
+    if node.name in imported or node.name in python_names.STDLIB_MODULES:
+        raise ValueError(f"choose another name: its script {node.executable} would shadow the Python module "
+                         f"'{node.name}' it needs")
 
 
 def _check_cpp_names(node: Node) -> None:
     """A ROS 2 C++ node's lines that hold both its package's name and its own fit 100 columns."""
     together = len(node.package) + len(node.name)
     if node.ros == 2 and node.is_cpp and together > names.CPP_PACKAGE_AND_NODE_MAX:
-        raise ValueError(f"its name and the package's have {together} characters together: a C++ node's have at "
+        raise ValueError(f"give it a shorter name: its name and the package's have {together} characters together: "
+                         "a C++ node's have at "
                          f"most {names.CPP_PACKAGE_AND_NODE_MAX}, so generated lines fit 100 columns")
     for parameter in node.parameters if node.ros == 2 and node.is_cpp else ():
         if parameter.name in names.CPP_FIELD_CLASHES:
@@ -477,11 +510,11 @@ def _check_connections(nodes: tuple[Node, ...]) -> None:
         (first, one), *others = found
         for other, endpoint in others:
             if endpoint.type != one.type:
-                raise ValueError(f"{what} '{name}': node '{first}' uses {one.type.full_name} and node '{other}' "
-                                 f"{endpoint.type.full_name}: its nodes must agree on one type")
+                raise ValueError(f"{what} '{name}': give its nodes one type: node '{first}' uses "
+                                 f"{one.type.full_name} and node '{other}' {endpoint.type.full_name}")
         if kind == "Topic" and nodes[0].ros == 2:
             publishers = [(who, t.qos) for who, t in found if t.role == "publisher"]
             subscribers = [(who, t.qos) for who, t in found if t.role == "subscriber"]
             for writer, reader, why in qos_rules.incompatible_pairs(publishers, subscribers):
-                raise ValueError(f"topic '{name}': node '{reader}' never hears node '{writer}': {why} "
-                                 "(give both the same qos preset)")
+                raise ValueError(f"topic '{name}': give both the same qos preset: node '{reader}' never hears node "
+                                 f"'{writer}': {why}")

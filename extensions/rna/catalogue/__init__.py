@@ -70,7 +70,8 @@ def unknown_type_error(package: str, kind: str, name: str, distro: str) -> str |
     if distro == "rolling" and any(name in (known_types(package, released) or {}).get(kind, ())
                                    for released in ROLLING_FALLBACKS):
         return None
-    given = InterfaceType(package, kind, name, generation(distro)).full_name
+    ros = generation(distro)
+    given = InterfaceType(package, kind, name, ros).full_name
     problem = f"'{given}' is not {with_article(KIND_NAMES[kind])} of {package} in {distro}"
     others = [with_article(KIND_NAMES[other]) for other in KIND_NAMES if name in types[other]]
     if others:  # ROS 1's nav_msgs/GetMap is both a service and an action
@@ -78,10 +79,10 @@ def unknown_type_error(package: str, kind: str, name: str, distro: str) -> str |
     # A name differing only in case is the one meant, however far apart difflib finds them.
     close = [known for known in types[kind] if known.lower() == name.lower()]
     close = close or difflib.get_close_matches(name, types[kind], n=1)
-    if close:
-        return f"{problem} (did you mean {close[0]}?)"
+    if close:  # the whole corrected type first, ready to type
+        return f"did you mean {InterfaceType(package, kind, close[0], ros).full_name}? {problem}"
     if not types[kind]:
         return f"{problem}: {package} has no {KIND_NAMES[kind]}s"
     if len(types[kind]) <= SHORT_LIST:
-        return f"{problem} ({package} has {english_list(types[kind])})"
+        return f"use one of {english_list(types[kind])}: {problem}"
     return problem

@@ -9,12 +9,11 @@ from __future__ import annotations
 
 import math
 import re
-import sys
 from collections import defaultdict
 from collections.abc import Iterable
 from functools import cached_property
 
-from .. import features, names
+from .. import features, names, python_names
 from .lines import BREAK, NESTED_BREAK, NESTED_SPLIT, SPLIT, splittable
 
 # Names the generated Python files import or define besides interface types.
@@ -154,10 +153,10 @@ def import_block(imports: Iterable[str]) -> str:
     statements += [(module, _from_import(module, sorted(names, key=_sort_key)))
                    for module, names in from_imports.items()]
     statements.sort(key=lambda item: (_sort_key(item[0]), item[1].startswith("from")))
-    stdlib = [line for module, line in statements if _top(module) in sys.stdlib_module_names]
+    stdlib = [line for module, line in statements if _top(module) in python_names.STDLIB_MODULES]
     groups: dict[str, list[str]] = defaultdict(list)
     for module, line in statements:
-        if _top(module) not in sys.stdlib_module_names:
+        if _top(module) not in python_names.STDLIB_MODULES:
             groups[_top(module)].append(line)
     blocks = ["\n".join(stdlib)] if stdlib else []
     blocks += ["\n".join(lines) for lines in groups.values()]

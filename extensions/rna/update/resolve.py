@@ -26,6 +26,7 @@ from collections.abc import Mapping
 import yaml
 
 from .. import distros
+from ..answers.nodes import normalised_nodes
 
 RENAMED_FROM = "renamed_from"  # a node's old name, during the update that renames it (rename_answers.py)
 CHECKSUM_LINE = "# rna-template checksum of the answers below: "
@@ -57,10 +58,12 @@ def languages(answers: Mapping) -> dict[str, str]:
 
 
 def resolved(answers: Mapping) -> dict:
-    """The answers to record: every node a mapping with its language written out."""
+    """The answers to record: every node a mapping with its language written out, and its
+    endpoints' types spelled as the package's ROS generation spells them."""
     recorded = dict(answers)
     nodes = recorded.get("nodes")
     if isinstance(nodes, list):
+        nodes = recorded["nodes"] = normalised_nodes(nodes, distros.generation(recorded.get("ros_distro")))
         written = languages(recorded)
         recorded["nodes"] = [
             {**node, "language": node.get("language") or written[str(node.get("name"))]}
