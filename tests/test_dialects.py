@@ -299,6 +299,16 @@ def test_the_bracket_depth_skips_strings_escapes_and_comments_as_a_reader_does(t
     assert lines._depth(text, depth) == _depth_char_by_char(text, depth)
 
 
+def test_an_override_past_100_columns_goes_on_a_line_of_its_own_as_uncrustify_puts_it():
+    from rna.dialects.cpp import CppDialect
+
+    short = "    std::shared_ptr<Trigger::Response> response)"
+    assert CppDialect.overriding(short) == short + " override"
+    long = "    std::shared_ptr<" + "A" * 52 + "::Response> response)"
+    assert CppDialect.overriding(long) == long + "\n  override"
+    assert CppDialect.overriding("x" * 91) == "x" * 91 + " override"  # exactly 100 columns
+
+
 # ─── Parameter rules: their words and the conditions each dialect checks them with ───────
 
 def _parameter(spelled_type: str, default, **rules) -> Parameter:

@@ -49,9 +49,12 @@ LAUNCH_TESTS = {2: "test/test_launch.py", 1: "test/graph.test"}
 GRAPH_TEST_SCRIPT = "test/test_graph.py"  # ROS 1: what the rostest file runs
 BASE_SUFFIX = "_base"
 
-# Files of a whole package, which a node added to an existing package never writes.
+# Files of a whole package, which a node added to an existing package never writes, but
+# these, when the package has none: a catkin package's setup.py, which installs the Python
+# package a ROS 1 Python node's base class is in (a package of rospy scripts has none).
 PACKAGE_FILES = (".gitignore", "README.md", "LICENSE", "package.xml", "CMakeLists.txt", "setup.py", "setup.cfg",
                  "resource", "test", "launch")
+NODE_PACKAGE_FILES = {1: ("setup.py",)}
 
 
 def user_file(package: str, name: str, ros: int, language: str) -> str:
