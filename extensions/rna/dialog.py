@@ -17,14 +17,13 @@ answer is one row there: the menus, the prompts and the checks follow.
 from __future__ import annotations
 
 import copy
-import re
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
 import yaml
 
 from . import catalogue, distros, names, qos, terminal
-from .answers.nodes import Types, normalised_entry, parse_node
+from .answers.nodes import Types, normalised_entry, parameter_mapping, parse_node
 from .interfaces import InterfaceType, normalised_type
 from .parameters import SCALAR_TYPES
 from .update.resolve import RENAMED_FROM
@@ -178,19 +177,7 @@ def entry_mapping(key: str, entry: object) -> dict:
         return {"period": entry}
     text = str(entry)
     if key == "parameters":
-        match = re.fullmatch(r"(?P<name>[^:=\s]+)\s*(?::\s*(?P<type>[^=\s]+))?\s*(?:=(?P<default>.*))?", text.strip(),
-                             re.S)
-        if not match:
-            return {"name": text}
-        mapping = {"name": match["name"]}
-        if match["type"]:
-            mapping["type"] = match["type"]
-        if match["default"] is not None:
-            try:
-                mapping["default"] = yaml.safe_load(match["default"])
-            except yaml.YAMLError:
-                mapping["default"] = match["default"]
-        return mapping
+        return parameter_mapping(text) or {"name": text}
     fields = [field.key for field in ENTRY_FIELDS[key] if field.short]
     parts = [part.strip() for part in text.split(":", len(fields) - 1)]
     return {field: part for field, part in zip(fields, parts, strict=False) if part != ""}
