@@ -113,6 +113,8 @@ def catkin_ws(ros1, template_dir, tmp_path_factory) -> CatkinWorkspace:
     generate(template_dir, path / "src" / "tracker", TRACKER)
     generate(template_dir, path / "src" / "tracker_same", TRACKER_SAME)
     generate(template_dir, path / "src" / "diagnosed", DIAGNOSED)
+    generate(template_dir, path / "src" / "long_goals", LONG_GOALS)
+    _make_goals_long(path / "src" / "long_goals")
     # A C++ node added to a catkin package written by hand.
     add_node(template_dir, existing_packages.catkin(path / "src" / "hand_rover"),
              {"node_name": "listener", "node_subscribers": "chatter:std_msgs/msg/String"})
@@ -183,6 +185,53 @@ def test_diagnostics_reach_another_process(catkin_ws):
             for process in nodes:
                 assert_clean_exit(process, process.interrupt())
             echo.interrupt()
+
+
+LONG_GOALS = {"package_name": "long_goals", "ros_distro": "noetic", "description": "Goals that run for a while",
+              "nodes": [_node(role, language, **endpoints) for language in ("cpp", "python") for role, endpoints in (
+                  ("action_server", {"action_servers": ["count:actionlib/action/Test"]}),
+                  ("stubborn_server", {"action_servers": ["count:actionlib/action/Test"]}),
+                  ("action_client", {"action_clients": ["count:actionlib/action/Test"], "timers": [0.2]}))]}
+
+
+def _make_goals_long(destination: Path) -> None:
+    """Edit the servers' own files as a user would: goals of 30 s; the stubborn servers' goals
+    look at ros::ok() / rospy.is_shutdown() only, not at preemption."""
+    sources = destination / "long_goals"
+    edits = {"src/cpp_action_server.cpp": [("step < 3;", "step < 300;")],
+             "scripts/py_action_server.py": [("range(3)", "range(300)")],
+             "src/cpp_stubborn_server.cpp": [("step < 3;", "step < 300;"),
+                                             ("server.isPreemptRequested() || !ros::ok()", "!ros::ok()")],
+             "scripts/py_stubborn_server.py": [("range(3)", "range(300)"),
+                                               ("server.is_preempt_requested() or rospy.is_shutdown()",
+                                                "rospy.is_shutdown()")]}
+    for name, replacements in edits.items():
+        path = sources / name
+        text = path.read_text()
+        for old, new in replacements:
+            assert text.count(old) == 1, f"the starter code of {name} changed: no {old!r}"
+            text = text.replace(old, new)
+        path.write_text(text)
+
+
+@pytest.mark.parametrize("client", ["cpp_action_client", "py_action_client"])
+@pytest.mark.parametrize(("server", "ending"), [
+    ("cpp_action_server", "PREEMPTED"), ("py_action_server", "PREEMPTED"),
+    ("cpp_stubborn_server", "ABORTED"), ("py_stubborn_server", "ABORTED")])
+def test_a_goal_running_when_its_server_stops_ends_for_the_client(catkin_ws, server, ending, client):
+    """Ctrl-C mid-goal: the goal is preempted while the server can still send the result (as
+    actionlib's tutorial ends a goal when ROS stops), aborted if it ignores that for a second;
+    the client hears how it ended instead of waiting forever, and the server exits cleanly."""
+    logs = catkin_ws.logs / f"goal_stop_{server}_{client}"
+    with catkin_ws.network(f"goal_stop_{server}_{client}") as (prefix, env):
+        server_process = catkin_ws.node(prefix, env, "long_goals", server, log=logs / "server.log")
+        client_process = catkin_ws.node(prefix, env, "long_goals", client, log=logs / "client.log")
+        with started(server_process, client_process):
+            client_process.wait_for("Feedback on the count goal", timeout=30)
+            assert_clean_exit(server_process, server_process.interrupt())
+            status = {"PREEMPTED": 2, "ABORTED": 4}[ending]
+            client_process.wait_for(rf"The count goal ended (as {ending}|with status {status})", timeout=5)
+            assert_clean_exit(client_process, client_process.interrupt())
 
 
 def test_node_added_to_a_hand_written_package_runs(catkin_ws):

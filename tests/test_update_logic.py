@@ -187,6 +187,12 @@ def test_ros2_to_ros1_is_refused_in_one_line_and_ros1_to_ros2_is_a_port():
     assert refusals.switch_error(ros2, {**ros2, "ros_distro": "humble"}) is None  # another ROS 2 distro
     assert refusals.switch_error(ros2, {**ros2, "build_type": "ament_python"}) is None  # a conversion the update makes
     assert refusals.switch_error({}, ros2) is None and refusals.switch_error({"ros_distro": None}, ros2) is None
+    # a port renames nodes, not the package: that is an update of its own
+    renamed = refusals.switch_error({"ros_distro": "noetic", "package_name": "rover"},
+                                    {"ros_distro": "kilted", "package_name": "rover2"})
+    assert renamed is not None and renamed.question == "package_name" and "\n" not in str(renamed)
+    assert refusals.switch_error({"ros_distro": "noetic", "package_name": "rover"},
+                                 {"ros_distro": "noetic", "package_name": "rover2"}) is None
 
 
 def test_a_node_is_ported_only_once_the_package_around_it_is_ros2():

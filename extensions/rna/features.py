@@ -131,7 +131,9 @@ ROS1_CPP = {
                          ("diagnostic_updater/DiagnosticStatusWrapper.h", "diagnostic_updater/diagnostic_updater.h"),
                          ("diagnostic_msgs/DiagnosticStatus.h", "diagnostic_updater/DiagnosticStatusWrapper.h")),
     "actions": Needs(("actionlib", "actionlib_msgs")),
-    "action_servers": Needs(base=("actionlib/server/simple_action_server.h",)),
+    # Ctrl-C ends running goals before ROS shuts down: a SIGINT handler, and a cancel of the
+    # server's own goals (the base class's stop_running_goals()).
+    "action_servers": Needs(base=("<csignal>", "actionlib/server/simple_action_server.h", "actionlib_msgs/GoalID.h")),
     "action_clients": Needs(base=("actionlib/client/simple_action_client.h",)),
     "string_parameters": Needs(base=("<string>",)),
     "array_parameters": Needs(base=("<vector>",)),
@@ -146,7 +148,8 @@ ROS1_PYTHON = {
     "diagnostics": Needs(("diagnostic_msgs", "diagnostic_updater"), ("diagnostic_updater",),
                          ("diagnostic_msgs.msg:DiagnosticStatus",)),
     "actions": Needs(("actionlib", "actionlib_msgs")),
-    "action_servers": Needs(base=("actionlib:SimpleActionServer",)),
+    # time: a running goal gets a second to end when the node stops (_stop_action_server).
+    "action_servers": Needs(base=("time", "actionlib:SimpleActionServer")),
     "action_clients": Needs(base=("actionlib:SimpleActionClient",), user=("actionlib_msgs.msg:GoalStatus",)),
     "parameter_checks": Needs(base=("sys",)),
 }
