@@ -10,7 +10,9 @@ from __future__ import annotations
 
 import contextlib
 import random
+import re
 import subprocess
+import time
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -370,6 +372,39 @@ def test_launch_file_starts_every_node_with_its_config(catkin_ws):
             launch.wait_for(r"rate: 2\.5", timeout=30)  # the value tuned in config/talker.yaml
             launch.wait_for(r'I heard: "Hello World: \d+"', timeout=30)
             assert_clean_exit(launch, launch.interrupt(timeout=30))
+
+
+def test_launch_arguments_reach_every_node(catkin_ws):
+    """namespace:=robot1 use_sim_time:=true, as roslaunch's summary lists what it starts."""
+    with catkin_ws.network("roslaunch_args") as (prefix, env):
+        launch = NodeProcess([*prefix, "roslaunch", "bringup", "bringup.launch", "namespace:=robot1",
+                              "use_sim_time:=true"], env=env, log_path=catkin_ws.logs / "roslaunch" / "arguments.log")
+        with started(launch):
+            # The talker's own log line (roslaunch's summary lists the parameter before it starts anything).
+            launch.wait_for(r"INFO\].*rate: 2\.5", timeout=30)
+            launch.wait_for(r"process\[robot1/listener-\d+\]: started", timeout=30)
+            # Started is not up: a rospy node stopped while it still imports rospy (seconds on a loaded
+            # machine) prints a KeyboardInterrupt traceback before any of its code runs.
+            wait_until_listed(prefix, env, "/robot1/listener")
+            summary = launch.output
+            assert re.search(r"^ \* /use_sim_time: True$", summary, re.MULTILINE), summary
+            assert re.search(r"^ \* /robot1/talker/rate: 2\.5$", summary, re.MULTILINE), summary
+            nodes = summary.split("NODES", 1)[1]
+            assert re.search(r"^  /robot1/\n    listener \(bringup/listener\.py\)\n    talker \(bringup/talker\)$",
+                             nodes, re.MULTILINE), summary
+            assert_clean_exit(launch, launch.interrupt(timeout=30))
+
+
+def wait_until_listed(prefix: list[str], env: dict, node: str, timeout: float = 30.0) -> None:
+    """Until the master lists `node` (rospy registers in init_node(), with run() holding Ctrl-C)."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        listed = subprocess.run([*prefix, "rosnode", "list"], env=env, capture_output=True, text=True, timeout=30,
+                                check=False).stdout.split()
+        if node in listed:
+            return
+        time.sleep(0.2)
+    raise AssertionError(f"{node} never registered with the master")
 
 
 # Drawn packages (issue 8): how many the default profile draws; HYPOTHESIS_PROFILE=thorough draws more.

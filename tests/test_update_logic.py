@@ -422,6 +422,28 @@ def test_a_kept_render_is_taken_only_for_exactly_the_answers_it_was_rendered_fro
     assert kept.pointed(clone) == str(folder)
 
 
+OLD_PYTHON_BASE = "class DriverBase(Node):\n    pass\n\n\nclass CtrlC:\n    pass\n"
+NEW_PYTHON_BASE = "class DriverBase(Node):\n    pass\n\n\ndef run(make_node, args=None):\n    pass\n"
+
+
+def test_what_an_edited_user_file_must_follow_from_its_base_file():
+    """A name the user's code imports from its base module that the new one lacks; an executor main() misses."""
+    python = {"language": "python"}
+    old, new = robot(**python).nodes[0], robot(**python).nodes[0]
+    main_of_0_3 = "from robot.driver_base import CtrlC, DriverBase\n\ndef main(args=None):\n    ctrl_c = CtrlC()\n"
+    [gone] = drift.base_reasons(old, new, main_of_0_3, OLD_PYTHON_BASE, NEW_PYTHON_BASE)
+    assert gone.startswith("driver_base.py no longer has CtrlC, which your code uses")
+    assert drift.base_reasons(old, new, "run(Driver, args=args)", OLD_PYTHON_BASE, NEW_PYTHON_BASE) == []
+    threaded = robot(**python, executor="multi_threaded").nodes[0]
+    assert drift.base_reasons(old, threaded, "run(Driver, args=args)", NEW_PYTHON_BASE, NEW_PYTHON_BASE) == []
+    cpp, cpp_threaded = robot().nodes[0], robot(executor="multi_threaded", threads=4).nodes[0]
+    spun_itself = "rclcpp::spin(node);"
+    assert drift.base_reasons(cpp, cpp, spun_itself, None, None) == []  # still one thread: it works as it is
+    [executor] = drift.base_reasons(cpp, cpp_threaded, spun_itself, None, None)
+    assert executor == "it spins on a multi-threaded executor now, which main() gets by calling Driver::spin()"
+    assert drift.base_reasons(cpp, cpp_threaded, "robot::Driver::spin(node);", None, None) == []
+
+
 # Values of every parameter type, written as the template writes them (rna.configs.yaml_entry).
 PARAMETER_VALUES = st.one_of(
     st.booleans(), st.integers(-(2**63), 2**63 - 1), st.floats(allow_nan=False), st.text(max_size=30),

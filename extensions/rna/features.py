@@ -54,6 +54,10 @@ def node_features(node) -> frozenset[str]:
         "parameter_checks": node.checks_parameters,
         "one_of_parameters": any(p.one_of for p in parameters),
         "on_set_parameters": node.on_set_parameters,
+        node.executor: True,  # single_threaded, multi_threaded, static, events
+        "callback_groups": bool(node.callback_groups),
+        "mutually_exclusive_groups": any(g.type == "mutually_exclusive" for g in node.callback_groups),
+        "reentrant_groups": any(g.type == "reentrant" for g in node.callback_groups),
     }
     return frozenset(name for name, used in found.items() if used)
 
@@ -64,6 +68,8 @@ ROS2_CPP = {
                        ("lifecycle_msgs/msg/state.hpp", "rclcpp_lifecycle/lifecycle_node.hpp",
                         "rclcpp_lifecycle/lifecycle_publisher.hpp")),
     "component": Needs(("rclcpp_components",), user=("rclcpp_components/register_node_macro.hpp",)),
+    # spin(): a std::shared_ptr to the node, std::signal to ignore a SIGINT once stopping.
+    "executable": Needs(base=("<csignal>", "<memory>")),
     # The autostart parameter (read-only) and the timer that starts the node once it spins.
     "starts_itself": Needs(("rcl_interfaces",), ("<chrono>", "rcl_interfaces/msg/parameter_descriptor.hpp")),
     # The base class owns the Updater; the user's status task sets a DiagnosticStatus level.
@@ -92,10 +98,13 @@ ROS2_CPP = {
 }
 
 ROS2_PYTHON = {
-    # signal: the base module's CtrlC, which main() uses.
-    "node": Needs(("rclpy",), ("signal",), ("rclpy", "rclpy.executors:ExternalShutdownException",
-                                            "rclpy.executors:SingleThreadedExecutor",
-                                            "rclpy.signals:SignalHandlerOptions")),
+    # What the base module's run() uses: the user's main() calls it.
+    "node": Needs(("rclpy",), ("os", "signal", "threading", "rclpy", "rclpy.executors:ExternalShutdownException",
+                               "rclpy.signals:SignalHandlerOptions")),
+    "mutually_exclusive_groups": Needs(base=("rclpy.callback_groups:MutuallyExclusiveCallbackGroup",)),
+    "single_threaded": Needs(base=("rclpy.executors:SingleThreadedExecutor",)),
+    "multi_threaded": Needs(base=("rclpy.executors:MultiThreadedExecutor",)),
+    "reentrant_groups": Needs(base=("rclpy.callback_groups:ReentrantCallbackGroup",)),
     "plain": Needs(base=("rclpy.node:Node",)),
     "diagnostics": Needs(("diagnostic_msgs", "diagnostic_updater"), ("diagnostic_updater",),
                          ("diagnostic_msgs.msg:DiagnosticStatus",)),
@@ -143,7 +152,9 @@ ROS1_CPP = {
 }
 
 ROS1_PYTHON = {
-    "node": Needs(("rospy",), user=("rospy", "signal")),  # signal: main() holds Ctrl-C in start-up
+    # The base module's run(), which holds Ctrl-C in start-up (rna.dialects.ros1_python adds
+    # rospy to the user's file when its starter code logs).
+    "node": Needs(("rospy",), ("rospy", "signal")),
     "rospy_wiring": Needs(base=("rospy",)),
     "diagnostics": Needs(("diagnostic_msgs", "diagnostic_updater"), ("diagnostic_updater",),
                          ("diagnostic_msgs.msg:DiagnosticStatus",)),
