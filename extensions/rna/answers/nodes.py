@@ -175,18 +175,10 @@ _SHORT_PARAMETER = re.compile(r"(?P<name>[^:=\s]+)\s*(?::\s*(?P<type>[^=\s]+))?\
 
 def _parse_parameter(item: object, ros: int) -> Parameter:
     if isinstance(item, str):
-        match = _SHORT_PARAMETER.fullmatch(item.strip())
-        if not match:
+        mapping = _short_parameter(item)
+        if mapping is None:
             raise ValueError(f"parameter '{item}': write it as name:type=default, e.g. rate:double=10.0")
-        item = {"name": match["name"]}
-        if match["type"]:
-            item["type"] = match["type"]
-        if match["default"] is not None:
-            try:
-                item["default"] = yaml.safe_load(match["default"])
-            except yaml.YAMLError:
-                raise ValueError(f"parameter '{match['name']}': write the default as YAML (e.g. 1.5, true, [1, 2]): "
-                                 f"'{match['default']}' does not read as YAML") from None
+        item = mapping
     if not isinstance(item, Mapping):
         raise ValueError("write a parameter as 'name:type=default' or a mapping with name, type and default")
     check_keys(item, PARAMETER_KEYS, "parameter")
@@ -220,13 +212,12 @@ def _parse_parameter(item: object, ros: int) -> Parameter:
     return Parameter(name, ptype, default, description.strip(), value_range, read_only, one_of, length, not_empty)
 
 
-def parameter_mapping(item: object) -> dict:
-    """A parameter's answer as its long form: the short 'name:type=default' becomes its mapping."""
-    if not isinstance(item, str):
-        return dict(item) if isinstance(item, Mapping) else {}
-    match = _SHORT_PARAMETER.fullmatch(item.strip())
+def _short_parameter(text: str, lenient: bool = False) -> dict | None:
+    """The mapping of a short 'name:type=default', None if it is not one. A default that is not
+    YAML is a ValueError, or kept as its text when `lenient`."""
+    match = _SHORT_PARAMETER.fullmatch(text.strip())
     if not match:
-        return {}
+        return None
     mapping = {"name": match["name"]}
     if match["type"]:
         mapping["type"] = match["type"]
@@ -234,8 +225,18 @@ def parameter_mapping(item: object) -> dict:
         try:
             mapping["default"] = yaml.safe_load(match["default"])
         except yaml.YAMLError:
+            if not lenient:
+                raise ValueError(f"parameter '{match['name']}': write the default as YAML (e.g. 1.5, true, [1, 2]): "
+                                 f"'{match['default']}' does not read as YAML") from None
             mapping["default"] = match["default"]
     return mapping
+
+
+def parameter_mapping(item: object) -> dict:
+    """A parameter's answer as its long form: the short 'name:type=default' becomes its mapping."""
+    if not isinstance(item, str):
+        return dict(item) if isinstance(item, Mapping) else {}
+    return _short_parameter(item, lenient=True) or {}
 
 
 def _parse_not_empty(value: object, ptype: ParameterType, default: object, what: str) -> bool:
