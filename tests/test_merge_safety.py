@@ -114,7 +114,8 @@ def edit_python_node(edits: Edits, path: str, node: str, ros1: bool) -> None:
                   "\n\n    def distance_to(self, x, y):\n"
                   "        \"\"\"Distance from the origin (mine).\"\"\"\n"
                   "        return math.hypot(x, y)\n\n\ndef main(")
-    edits.before("an extra import", path, "import rospy" if ros1 else "import rclpy", "import math\n")
+    # A ROS 2 node's file imports no rclpy since its main() is thin: the import of its base is there.
+    edits.before("an extra import", path, "import rospy" if ros1 else "_base import", "import math\n")
     edits.own(path)
 
 
@@ -663,7 +664,7 @@ def test_a_dependency_the_user_declared_is_never_declared_twice(project, figure,
 # stop using it: the update must say that the package leaves package.xml while the code uses it.
 
 USES_NAV_MSGS = {
-    "ament_python": ("import rclpy", "from nav_msgs.msg import Odometry\n"),
+    "ament_python": ("_base import", "from nav_msgs.msg import Odometry\n"),
     "ament_cmake": ("#include <cstddef>", '#include "nav_msgs/msg/odometry.hpp"'),
     "catkin": ("#include <cstddef>", "#include <nav_msgs/Odometry.h>"),
 }
