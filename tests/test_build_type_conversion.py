@@ -47,7 +47,7 @@ def test_a_package_converted_between_build_types_keeps_the_users_code_and_builds
     lines = [
         ("robot/robot/driver.py", append_after(package / "robot" / "driver.py", "self.count += 1",
                                                "        self.last = clamp(len(msg.data))  # mine", occurrence=0)),
-        ("robot/robot/driver.py", append_after(package / "robot" / "driver.py", "_base import",
+        ("robot/robot/driver.py", append_after(package / "robot" / "driver.py", "from robot.driver_base import",
                                                "from robot.helpers import clamp", occurrence=0)),
         ("robot/robot/helpers.py", write_new_file(package / "robot" / "helpers.py",
                                                   '"""Helpers (mine)."""\n\n\ndef clamp(value):\n'

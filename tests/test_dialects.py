@@ -307,3 +307,115 @@ def test_an_override_past_100_columns_goes_on_a_line_of_its_own_as_uncrustify_pu
     long = "    std::shared_ptr<" + "A" * 52 + "::Response> response)"
     assert CppDialect.overriding(long) == long + "\n  override"
     assert CppDialect.overriding("x" * 91) == "x" * 91 + " override"  # exactly 100 columns
+
+
+# ─── Parameter rules: their words and the conditions each dialect checks them with ───────
+
+def _parameter(spelled_type: str, default, **rules) -> Parameter:
+    from rna.parameters import parse_type
+
+    return Parameter("p", parse_type(spelled_type), default, **rules)
+
+
+def test_a_parameters_rules_in_words_for_its_comment_the_readme_and_the_refusals():
+    from rna import parameters
+
+    ranged = _parameter("int", 5, range=(0, 100, 5), read_only=True)
+    assert parameters.rules(ranged, 2) == ("0 to 100 in steps of 5", "read-only")
+    assert parameters.rules(ranged, 1) == ("0 to 100",)  # ROS 1 checks bounds only, and sets nothing later
+    names = _parameter("string[]", ["a"], one_of=("a", "yes", "", "x, y"), length=(1, None))
+    assert parameters.comment(names, 2) == "Each one of: a, 'yes', '', 'x, y'; at least 1 value"
+    assert parameters.checks(names, 2) == (
+        ("each_one_of", "each value of p must be one of: a, 'yes', '', 'x, y'"),
+        ("length", "p must have at least 1 value"))
+    assert parameters.constraints(names) == "each one of: a, 'yes', '', 'x, y'; at least 1 value"
+    assert [parameters.length_text(length) for length in ((3, 3), (0, 6), (1, 1), (2, 9))] == [
+        "exactly 3 values", "at most 6 values", "exactly 1 value", "2 to 9 values"]
+    described = _parameter("string", "odom", description="The frame", not_empty=True)
+    assert parameters.comment(described, 1) == "The frame (not empty)"
+    assert parameters.checks(ranged, 2) == ()
+    assert parameters.checks(ranged, 1) == (("range", "p must be from 0 to 100"),)
+
+
+VALUES = st.one_of(st.none(), st.booleans(), st.integers(-3, 3), st.floats(-3, 3), st.text(max_size=2),
+                   st.lists(st.one_of(st.integers(-3, 3), st.text(max_size=2)), max_size=5))
+RULED = [
+    ("range", _parameter("double", 0.5, range=(0.0, 1.0, 0.0)),
+     lambda v: not isinstance(v, (int, float)) or not 0.0 <= v <= 1.0),
+    ("one_of", _parameter("string", "a", one_of=("a", "b")), lambda v: v not in ("a", "b")),
+    ("one_of", _parameter("int", 1, one_of=(1,)), lambda v: v != 1),
+    ("each_one_of", _parameter("int[]", [1], one_of=(1, 2)),
+     lambda v: not isinstance(v, list) or any(item not in (1, 2) for item in v)),
+    ("length", _parameter("int[]", [1, 2], length=(2, 2)), lambda v: not isinstance(v, list) or len(v) != 2),
+    ("length", _parameter("int[]", [1, 2], length=(1, 3)), lambda v: not isinstance(v, list) or not 1 <= len(v) <= 3),
+    ("length", _parameter("int[]", [1, 2], length=(0, 3)), lambda v: not isinstance(v, list) or len(v) > 3),
+    ("length", _parameter("int[]", [1, 2], length=(2, None)), lambda v: not isinstance(v, list) or len(v) < 2),
+    ("not_empty", _parameter("string", "a", not_empty=True), lambda v: v == ""),
+]
+
+
+@pytest.mark.parametrize(("rule", "parameter", "breaks"), RULED)
+@given(value=VALUES)
+@settings(max_examples=60)
+def test_a_ros1_python_check_is_true_exactly_for_a_value_that_breaks_its_rule(rule, parameter, breaks, value):
+    """ROS 1's parameter server holds any type: a value of another type breaks the rule, never raises."""
+    condition = lines.fit("        if " + Ros2Python.check(parameter, rule, "value", typed=False) + ":", "python")
+    assert eval(condition.strip().removeprefix("if ").removesuffix(":"), {}, {"value": value}) == breaks(value)
+
+
+@pytest.mark.parametrize(("rule", "parameter", "breaks"), [case for case in RULED if case[0] != "range"])
+@given(value=VALUES)
+@settings(max_examples=60)
+def test_a_ros2_python_check_is_true_exactly_for_a_value_that_breaks_its_rule(rule, parameter, breaks, value):
+    """ROS 2's types are checked by rclpy first: here a value of the parameter's type, an array a tuple."""
+    typed = {"string": str, "int": int}[parameter.type.scalar]
+    if parameter.type.is_array:
+        if not isinstance(value, list) or not all(isinstance(item, typed) for item in value):
+            return
+        value = tuple(value)
+    elif not isinstance(value, typed) or isinstance(value, bool):
+        return
+    condition = lines.fit("        if " + Ros2Python.check(parameter, rule, "params.p") + ":", "python")
+    params = type("Params", (), {"p": value})
+    reference = breaks(list(value) if parameter.type.is_array else value)
+    assert eval(condition.strip().removeprefix("if ").removesuffix(":"), {}, {"params": params}) == reference
+
+
+def test_a_long_condition_breaks_inside_its_brackets_and_stands_apart_from_its_block():
+    """pycodestyle E125: a condition's continuation lines are indented once more than its block."""
+    allowed = tuple(f"value_number_{n}" for n in range(8))
+    parameter = _parameter("string", allowed[0], one_of=allowed)
+    fitted = lines.fit("        if " + Ros2Python.check(parameter, "one_of", "params.p") + ":", "python").split("\n")
+    assert len(fitted) > 1 and all(line.startswith(" " * 16) for line in fitted[1:])
+    assert all(len(line) <= 99 for line in fitted)
+    ast.parse(textwrap.dedent("\n".join(fitted)) + "\n    pass")
+
+
+def test_cpp_checks_read_as_the_rule():
+    from rna.dialects import Ros2Cpp
+
+    class Node:  # the dialect needs no more of it for a check
+        pass
+
+    spell = Ros2Cpp(Node())
+    assert lines.fit("    if (" + spell.check(_parameter("string", "a", one_of=("a", "b")), "one_of", "values.p")
+                     + ") {", "cpp") == '    if (!is_one_of<std::string>(values.p, {"a", "b"})) {'
+    assert spell.check(_parameter("int[]", [1], length=(1, 3)), "length", "values.p").replace(B, "") == (
+        "values.p.size() < 1 || values.p.size() > 3")
+    assert spell.check(_parameter("int[]", [1], length=(0, 3)), "length", "values.p") == "values.p.size() > 3"
+    assert spell.check(_parameter("string", "a", not_empty=True), "not_empty", "values.p") == "values.p.empty()"
+
+
+def test_a_value_read_from_a_config_file_is_refused_with_the_reason_its_node_gives():
+    from rna.parameters import refusal
+
+    stepped = _parameter("int", 5, range=(0, 100, 5))
+    assert refusal(stepped, 7, 2) == "p must be from 0 to 100 in steps of 5"  # rclcpp refuses it too
+    assert refusal(stepped, 7, 1) is None and refusal(stepped, 101, 1) == "p must be from 0 to 100"
+    assert refusal(stepped, "x", 2) and refusal(stepped, "x", 1)
+    names = _parameter("string[]", ["a"], one_of=("a", "b"), length=(1, 2))
+    assert refusal(names, ["a", "c"], 2) == "each value of p must be one of: a, b"
+    assert refusal(names, ["a", "b", "a"], 2) == "p must have 1 to 2 values"
+    assert refusal(names, "a", 1) == "each value of p must be one of: a, b"
+    assert refusal(names, ["b"], 2) is None
+    assert refusal(_parameter("string", "a", not_empty=True), "", 2) == "p must not be empty"

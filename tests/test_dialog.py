@@ -267,6 +267,31 @@ def test_ros1_types_and_long_forms_kept():
     assert "did you mean nav_msgs/Odometry?" in dict(script.refused)["nav_msgs/Odometr"]
 
 
+def test_a_parameters_rules_are_edited_in_place_each_checked_with_the_node():
+    """Allowed values typed as the answers write them (a list without its brackets too), a length,
+    not empty, a range set and taken back; a rule the type does not take is refused, and said."""
+    script = Script([
+        "Edit driver", "Edit parameter mode", "Allowed values", "slow, medium", "slow, fast", "Description",
+        "How it drives", "Not empty", "Done",
+        "Edit parameter gains", "Number of values", "3", "2", "Done",
+        "Edit parameter rate", "Range", "0.0, 10.0", "Range", "\b", "Not empty", "Done",
+        "Done with", "Done"])
+    start = [{"name": "driver", "parameters": ["mode:string=fast", "gains:double[]=[1.0, 2.0]", "rate=2.5"]}]
+    nodes = dialog.Dialog(start, rules(), script).run()
+    assert nodes[0]["parameters"] == [
+        {"name": "mode", "type": "string", "default": "fast", "one_of": ["slow", "fast"],
+         "description": "How it drives", "not_empty": True},
+        {"name": "gains", "type": "double[]", "default": [1.0, 2.0], "length": 2},
+        "rate=2.5"]  # its range set and taken back: the short form again
+    assert dict(script.refused) == {
+        "slow, medium": "node 'driver': parameter 'mode': default \"fast\" is not one of: slow, medium",
+        "3": "node 'driver': parameter 'gains': the default has 2 values, but length asks for exactly 3 values"}
+    assert "node 'driver': parameter 'rate': only string parameters take not_empty (an array's length: `length`)" \
+        in script.said
+    shown = [choice for menu in script.menus for choice in menu]
+    assert "Allowed values: [slow, fast]" in shown and "Not empty: yes" in shown and "Number of values: 2" in shown
+
+
 def test_without_a_terminal_the_dialog_asks_nothing_and_keeps_the_nodes(template_dir, tmp_path):
     """--defaults (or no terminal): the dialog's nodes are those it starts from, the demo."""
     generate(template_dir, tmp_path / "demo", {"node_setup": "dialog"})

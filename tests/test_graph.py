@@ -50,9 +50,11 @@ def test_a_code_span_keeps_backticks_and_pipes_in_one_cell():
 def test_parameter_rows_stay_one_line_whatever_the_default():
     node = package(nodes=[{"name": "a", "parameters": [
         {"name": "text", "type": "string", "default": "two\nlines | and `ticks`", "description": "A <b>  b"},
-        "gains:double[]=[1.5, 2]", "on=true"]}]).nodes[0]
+        "gains:double[]=[1.5, 2]", "on=true",
+        {"name": "mode", "default": "a|b", "one_of": ["a|b", "<c>"], "read_only": True}]}]).nodes[0]
     rows = graph.parameter_rows(node)
-    assert rows[0] == ('`text`', '`string`', '``"two\\nlines \\| and `ticks`"``', "A &lt;b&gt; b")
+    assert rows[0] == ('`text`', '`string`', '``"two\\nlines \\| and `ticks`"``', "", "A &lt;b&gt; b")
+    assert rows[3][3] == "one of: a\\|b, &lt;c&gt;; read-only"  # the values it takes, escaped as the others
     assert rows[1][1:3] == ("`double[]`", "`[1.5, 2.0]`") and rows[2][1:3] == ("`bool`", "`true`")
     assert all("\n" not in cell for row in rows for cell in row)
 

@@ -27,6 +27,7 @@ from catkin_pkg.package import parse_package
 
 if "support.template_repo" not in sys.modules:  # its asserts explain themselves too
     pytest.register_assert_rewrite("support.template_repo")
+from rna.answers.nodes import parameter_mapping  # noqa: E402
 from rna.update import resolve  # noqa: E402
 from support.generation import git  # noqa: E402
 from support.template_repo import (  # noqa: E402
@@ -260,6 +261,17 @@ def set_default(node_name: str, parameter: str, value: str) -> Callable[[Flavor,
     return change
 
 
+def set_rules(rules: dict[tuple[str, str], dict]) -> Callable[[Flavor, list[dict]], list[dict]]:
+    """(node, parameter) -> the rules its answer gets (written as a mapping)."""
+    def change(flavor: Flavor, nodes: list[dict]) -> list[dict]:
+        for (node_name, parameter), added in rules.items():
+            node = find_node(nodes, node_name)
+            node["parameters"] = [{**parameter_mapping(p), **added} if parameter_mapping(p)["name"] == parameter
+                                  else p for p in node["parameters"]]
+        return nodes
+    return change
+
+
 def remove(name: str) -> Callable[[Flavor, list[dict]], list[dict]]:
     return lambda flavor, nodes: [node for node in nodes if node["name"] != name]
 
@@ -312,6 +324,14 @@ CHANGES = {
     "change-the-default-of-another-parameter": Change(
         set_default("driver", "max_speed", "0.9"),
         lambda p, f: "max_speed: 0.9" in text(p, f.config_file("driver"))),
+    # gain is tuned (with a comment of the user's on its line) and described, frame_id has a comment of
+    # the user's above it, limit is tuned and followed by a parameter of the user's.
+    "add-rules-to-tuned-and-commented-parameters": Change(
+        set_rules({("driver", "gain"): {"range": [0.0, 5.0]}, ("driver", "frame_id"): {"one_of": ["base_link", "odom"]},
+                   ("monitor", "limit"): {"range": [0, 10]}}),
+        lambda p, f: ("# Proportional gain (0.0 to 5.0)" in text(p, f.config_file("driver"))
+                      and "# 0 to 10\n" in text(p, f.config_file("monitor"))
+                      and "frame_id must be one of: base_link, odom" in text(p, f.base_file("driver")))),
     "remove-another-node": Change(
         remove("logger"),
         lambda p, f: not (p / f.config_file("logger")).exists() and "logger" not in text(p, f.launch_file)),

@@ -51,7 +51,7 @@ def ported_body(body: str, method: str = "on_timer(self, event)") -> str:
 
 @pytest.mark.parametrize(("ros1", "ros2"), [
     ("rospy.loginfo('x')", "self.get_logger().info('x')"),
-    ("rospy.logwarn('gain %s', self.rate)", "self.get_logger().warning(f\"gain {self.get_parameter('rate').value}\")"),
+    ("rospy.logwarn('gain %s', self.rate)", "self.get_logger().warning(f'gain {self.params.rate}')"),
     ("rospy.logerr('%.2f m', d)", "self.get_logger().error(f'{d:.2f} m')"),
     ("rospy.logdebug('%d of %d', a, b)", "self.get_logger().debug('%d of %d' % (a, b))"),
     ("rospy.loginfo_throttle(2.0, 'x %s', a)", "self.get_logger().info(f'x {a}', throttle_duration_sec=2.0)"),
@@ -82,8 +82,8 @@ def ported_body(body: str, method: str = "on_timer(self, event)") -> str:
     ("p = rospy.Publisher('out', String, queue_size=5)", "p = self.create_publisher(String, 'out', 5)"),
     ("s = rospy.Subscriber('in', String, self.got)", "s = self.create_subscription(String, 'in', self.got, 10)"),
     ("t = rospy.Timer(rospy.Duration(0.1), self.tick)", "t = self.create_timer(0.1, self.tick)"),
-    ("r = rospy.get_param('~rate', 2.0)", "r = self.get_parameter('rate').value"),
-    ("r = self.rate * 2", "r = self.get_parameter('rate').value * 2"),
+    ("r = rospy.get_param('~rate', 2.0)", "r = self.params.rate"),
+    ("r = self.rate * 2", "r = self.params.rate * 2"),
     ("self.chatter_subscriber.unregister()", "self.chatter_subscription.unregister()"),
     ("self.timer_timer.shutdown()", "self.timer_timer.cancel()"),
     ("self.dock_action_client.wait_for_server(rospy.Duration(0.1))",
@@ -299,7 +299,7 @@ def cpp_in_node(body: str) -> str:
     ("if (reset_client_.exists()) {}", "if (reset_client_->service_is_ready()) {}"),
     ("call_reset(Trigger::Request());", "call_reset(std::make_shared<Trigger::Request>());"),
     ("if (dock_action_client_.isServerConnected()) {}", "if (dock_action_client_->action_server_is_ready()) {}"),
-    ("double r = rate_ * 2;", 'double r = get_parameter("rate").as_double() * 2;'),
+    ("double r = rate_ * 2;", 'double r = params().rate * 2;'),
     ("std_msgs::String s;", "std_msgs::msg::String s;"),
     ("std_srvs::TriggerRequest r;", "std_srvs::srv::Trigger::Request r;"),
     ("nav_msgs::Odometry::ConstPtr o;", "nav_msgs::msg::Odometry::ConstSharedPtr o;"),

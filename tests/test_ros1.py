@@ -27,9 +27,10 @@ from support.strategies import valid_answers
 pytestmark = pytest.mark.ros1
 
 SERVER_PARAMETERS = [
-    {"name": "rate", "default": 1.5, "description": "Work rate in Hz"},
-    "label:string=plain",
-    "limits:int[]=[1, 2]",
+    {"name": "rate", "default": 1.5, "description": "Work rate in Hz", "range": [0.0, 10.0]},
+    {"name": "mode", "default": "fast", "one_of": ["slow", "fast"]},
+    {"name": "label", "type": "string", "default": "plain", "not_empty": True},
+    {"name": "limits", "type": "int[]", "default": [1, 2], "length": [1, 3]},
     "verbose=false",
 ]
 
@@ -273,6 +274,29 @@ def test_parameters_come_from_the_command_line(catkin_ws):
                 node.wait_for("label: from_cli")
                 node.wait_for(r"verbose: (false|False)")
                 assert_clean_exit(node, node.interrupt())
+
+
+@pytest.mark.parametrize("server", ["cpp_server", "py_server"])
+def test_a_parameter_that_breaks_a_rule_stops_the_node_with_one_error(catkin_ws, server):
+    """ROS 1 reads parameters as a node starts: the answers' rules are checked then, ranges included."""
+    with catkin_ws.network(f"params_refused_{server}") as (prefix, env):
+        for number, (name, value, error) in enumerate((
+                ("rate", "50.0", "rate must be from 0.0 to 10.0"),
+                ("mode", "medium", "mode must be one of: slow, fast"),
+                ("limits", "[1, 2, 3, 4]", "limits must have 1 to 3 values"),
+                ("label", "''", "label must not be empty"))):
+            # On the parameter server, as a launch file's <rosparam> puts it (roscpp reads `_name:=`
+            # arguments as scalars only).
+            rosparam = [*prefix, "rosparam", "set", f"/{server}/{name}", value]
+            subprocess.run(rosparam, env=env, check=True, capture_output=True, timeout=30)
+            node = catkin_ws.node(prefix, env, "pairs", server,
+                                  log=catkin_ws.logs / f"params_refused_{server}" / f"{number}.log")
+            with started(node):
+                assert node.wait() == 1, node.output
+            subprocess.run([*prefix, "rosparam", "delete", f"/{server}/{name}"], env=env, check=True,
+                           capture_output=True, timeout=30)
+            assert error in node.output and "Traceback" not in node.output, node.output
+            assert not any(word in node.output for word in ("rate: ", "label: ")), node.output  # stopped first
 
 
 SIGINT_SEED = 8

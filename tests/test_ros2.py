@@ -126,6 +126,13 @@ def build_workspace(ros2: ros2_support.Ros2Environment, template_dir: Path, path
         if names is None or name in names:
             user_file = path / "src" / name / name / module
             user_file.write_text(user_file.read_text().replace("for _ in range(3):", f"for _ in range({steps}):"))
+    if names is None or "robot_services" in names:
+        # A user's callback reads the node's parameters, as a user's code does.
+        server = path / "src" / "robot_services" / "robot_services" / "robot_services" / "server.py"
+        answering = "self.get_logger().info('Answering a reset request')"
+        assert answering in server.read_text()
+        server.write_text(server.read_text().replace(
+            answering, f"{answering}\n        self.get_logger().info(f'params: {{self.params}}')"))
     if names is None or "busy_executors" in names:
         for name in ("single", "threaded"):
             server = path / "src" / "busy_executors" / "busy_executors" / "busy_executors" / f"{name}.py"
@@ -371,6 +378,69 @@ def test_parameter_range_is_enforced(workspace):
     with started(workspace.node("robot_services", "server", "-p", "rate:=50.0", log="params_range")) as (server,):
         assert server.wait() != 0
         assert re.search(r"rate.*(range|bound)", server.output, re.I | re.S), server.output
+
+
+@ON_EVERY_DISTRO
+def test_parameters_set_from_another_process_are_checked_whole_and_the_node_sees_them(workspace):
+    """rclpy's checks (range, read-only) and the answers' (allowed values, length, not empty), each
+    refusal with its reason; an atomic set applied whole or not at all; the user's hook and the
+    node's own view (self.params, read by a service callback) follow each accepted set."""
+    config = workspace.share("robot_services") / "config" / "server.yaml"
+
+    def set_one(**values):
+        return json.loads(workspace.probe("set", "server", json.dumps(values)))[0]
+
+    def set_together(**values):
+        return json.loads(workspace.probe("set_atomically", "server", json.dumps(values)))
+
+    def read_back(*names):
+        return json.loads(workspace.probe("params", "server", *names))
+
+    def view_seen_by_a_callback(text):
+        assert json.loads(workspace.probe("trigger", "/reset"))["success"]
+        server.wait_for(re.escape(f"params: Params({text}"))
+
+    with started(workspace.node("robot_services", "server", "--params-file", str(config), log="params_set")) as (
+            server,):
+        view_seen_by_a_callback("rate=2.5, mode='fast', frame_id='base_link', joints=('left', 'right'), serial=7")
+        assert set_one(rate=3.0) == {"successful": True, "reason": ""}
+        server.wait_for(r"rate changed from 2\.5 to 3\.0")  # the user's hook (starter code), old and new
+        assert read_back("rate") == {"rate": 3.0}
+        view_seen_by_a_callback("rate=3.0, mode='fast'")
+
+        refusals = {
+            "mode": (set_one(mode="medium"), "mode must be one of: slow, fast"),
+            "frame_id": (set_one(frame_id=""), "frame_id must not be empty"),
+            "joints": (set_one(joints=["left", "head"]), "each value of joints must be one of: left, right, tail"),
+            "joints length": (set_one(joints=["left"] * 4), "joints must have 1 to 3 values"),
+        }
+        for what, (result, reason) in refusals.items():
+            assert result == {"successful": False, "reason": reason}, what
+        out_of_range, read_only = set_one(rate=50.0), set_one(serial=8)
+        assert not out_of_range["successful"] and re.search("rate.*range", out_of_range["reason"]), out_of_range
+        assert not read_only["successful"] and "read-only" in read_only["reason"], read_only
+
+        # One value that breaks a rule refuses the whole set; a valid one is applied whole.
+        assert set_together(rate=4.0, mode="medium") == {"successful": False,
+                                                        "reason": "mode must be one of: slow, fast"}
+        assert read_back("rate", "mode") == {"rate": 3.0, "mode": "fast"}
+        assert set_together(rate=4.0, mode="slow", joints=["tail"]) == {"successful": True, "reason": ""}
+        server.wait_for(r"joints changed from \('left', 'right'\) to \('tail',\)")
+        server.wait_for(r"mode changed from 'fast' to 'slow'")
+        server.wait_for(r"rate changed from 3\.0 to 4\.0")
+        assert read_back("rate", "mode", "frame_id", "joints", "serial") == {
+            "rate": 4.0, "mode": "slow", "frame_id": "base_link", "joints": ["tail"], "serial": 7}
+        view_seen_by_a_callback("rate=4.0, mode='slow', frame_id='base_link', joints=('tail',), serial=7")
+        stop_all(server)
+    # A refused set calls no hook: the two accepted sets changed four values.
+    assert len(re.findall(r" changed from ", server.output)) == 4, server.output
+
+
+@ON_EVERY_DISTRO
+def test_a_value_that_breaks_a_rule_stops_the_node_as_it_starts(workspace):
+    with started(workspace.node("robot_services", "server", "-p", "mode:=medium", log="params_start")) as (server,):
+        assert server.wait() != 0
+        assert "mode must be one of: slow, fast" in server.output, server.output
 
 
 @ON_EVERY_DISTRO

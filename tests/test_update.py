@@ -711,6 +711,54 @@ def test_change_parameter_defaults(project, flavor_name):
     assert re.search(r"'(~)?limit', 7\b", monitor_base), monitor_base
 
 
+@pytest.mark.parametrize("flavor_name", FLAVORS)
+def test_parameter_rules_added_then_changed(project, flavor_name):
+    """Rules given to parameters, then loosened (an allowed value added, bounds moved): each update
+    reaches the base class's checks and the config file's comments, and keeps the user's tuned
+    value, its comment and the user's own lines."""
+    flavor = Flavor(flavor_name)
+    destination = project(flavor_name)
+    config = destination / flavor.config_file("driver")
+    tuned = replace_text(config, "max_speed: 0.5", "max_speed: 0.8  # measured on the robot")
+    own = edit_user_file(destination, flavor, "driver")
+    commit_all(destination, "tune max_speed")
+    nodes = flavor.answers["nodes"]
+    find_node(nodes, "driver")["parameters"] = [
+        {"name": "gain", "type": "double", "default": 1.0, "description": "Proportional gain", "range": [0.0, 5.0]},
+        {"name": "frame_id", "default": "base_link", "one_of": ["base_link", "odom"], "not_empty": True},
+        {"name": "max_speed", "type": "double", "default": 0.5, "range": [0.0, 1.0]}]
+
+    for allowed, high, speed in ((["base_link", "odom"], 5.0, 1.0), (["base_link", "odom", "map"], 10.0, 2.0)):
+        driver = find_node(nodes, "driver")
+        driver["parameters"][0]["range"][1] = high
+        driver["parameters"][1]["one_of"] = allowed
+        driver["parameters"][2]["range"][1] = speed
+        assert_clean_update(run_update(destination, {"nodes": nodes}), destination)
+        commit_all(destination, "updated")
+        text = config.read_text()
+        assert config_values(destination, flavor, "driver") == {"gain": 1.0, "frame_id": "base_link",
+                                                                "max_speed": 0.8}
+        assert f"# Proportional gain (0.0 to {high})\n" in text, text
+        assert f"# One of: {', '.join(allowed)}; not empty\n" in text, text
+        assert f"# 0.0 to {speed}\n" in text, text
+        # the header's 3 lines and one above each parameter, none left behind
+        assert sum(line.lstrip().startswith("#") for line in text.splitlines()) == 3 + 3, text
+        assert missing_block(config, tuned) is None
+        assert missing_block(destination / flavor.user_file("driver"), own) is None
+        base = (destination / flavor.base_file("driver")).read_text()
+        assert f"frame_id must be one of: {', '.join(allowed)}" in base, base
+        assert "frame_id must not be empty" in base, base
+
+    # Bounds that leave out the value the user tuned: kept, and the summary says the node would stop.
+    find_node(nodes, "driver")["parameters"][2]["range"] = [0.0, 0.5]
+    result = run_update(destination, {"nodes": nodes})
+    assert_clean_update(result, destination)
+    assert config_values(destination, flavor, "driver")["max_speed"] == 0.8
+    said = " ".join(result.stdout.split())
+    assert ("max_speed is 0.8 there, but max_speed must be from 0.0 to 0.5: the node would stop as it starts; "
+            "change the value or the rule.") in said, result
+
+
 # ─── Removing nodes ───────────────────────────────────────────────────────────
 
 REMOVALS = {  # id -> (flavour, the removed node whose user file was edited, the untouched one)

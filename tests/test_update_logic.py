@@ -43,6 +43,19 @@ def test_a_config_merge_keeps_the_users_comments_and_layout():
                            "frame_id: odom\nmax_speed: 0.9\n# New\nnew: 2\nstop: 0.3  # mine\n")
 
 
+def test_a_config_merge_tells_the_files_header_from_a_parameters_comment():
+    """A ROS 1 file's first parameter follows the header: its comment (description, rules) is added
+    below the header, and a comment of the user's there is the parameter's, changed as one."""
+    old = HEADER + "rate: 1.0\n\nlimit: 5\n"
+    new = HEADER + "# 0.0 to 5.0\nrate: 1.0\n\n# 0 to 10\nlimit: 5\n"
+    merged = config_merge.merge(old, old.replace("rate: 1.0", "rate: 2.0"), new, ({}, {"rate": "0.0 to 5.0",
+                                                                                       "limit": "0 to 10"}))
+    assert merged.text == HEADER + "# 0.0 to 5.0\nrate: 2.0\n\n# 0 to 10\nlimit: 5\n"
+    widened = config_merge.merge(new, merged.text, new.replace("5.0", "9.0"), ({"rate": "0.0 to 5.0"},
+                                                                               {"rate": "0.0 to 9.0"}))
+    assert widened.text == HEADER + "# 0.0 to 9.0\nrate: 2.0\n\n# 0 to 10\nlimit: 5\n"
+
+
 def test_a_config_merge_reads_values_written_over_several_lines():
     old = "/**:\n  ros__parameters:\n    gains: [1.0, 2.0]\n\n    rate: 5\n"
     mine = "/**:\n  ros__parameters:\n    gains:\n      - 1.0\n      - 2.5\n    rate: 5  # Hz\n"

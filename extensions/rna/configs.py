@@ -26,11 +26,11 @@ def yaml_literal(value: object) -> str:
     if isinstance(value, float):
         return yaml_float(value)
     if isinstance(value, list):
-        return "[" + ", ".join(_flow_item(item) for item in value) + "]"
+        return "[" + ", ".join(flow_item(item) for item in value) + "]"
     return yaml.safe_dump(value, default_flow_style=True, width=10**6).strip().removesuffix("...").strip()
 
 
-def _flow_item(value: object) -> str:
+def flow_item(value: object) -> str:
     """An element of a flow list: a string plain on its own may not be in a list (`a, b`, `??/`)."""
     if not isinstance(value, str):
         return yaml_literal(value)
@@ -47,7 +47,7 @@ def yaml_entry(indent: str, key: str, value: object, width: int = 99) -> str:
     line = f"{indent}{key}: {yaml_literal(value)}"
     if not isinstance(value, list) or len(line) <= width:
         return line
-    items = [_flow_item(item) for item in value]
+    items = [flow_item(item) for item in value]
     pad = indent + "  "
     lines, current = [f"{indent}{key}: ["], pad
     for index, item in enumerate(items):

@@ -17,14 +17,13 @@ answer is one row there: the menus, the prompts and the checks follow.
 from __future__ import annotations
 
 import copy
-import re
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
 import yaml
 
 from . import catalogue, distros, names, qos, terminal
-from .answers.nodes import Types, normalised_entry, parse_node
+from .answers.nodes import Types, normalised_entry, parameter_mapping, parse_node
 from .interfaces import InterfaceType, normalised_type
 from .model import CALLBACK_GROUP_TYPES, DEFAULT_EXECUTOR, EXECUTORS
 from .parameters import SCALAR_TYPES
@@ -67,8 +66,9 @@ NO_VALUE = "(none)"  # a choice that leaves an optional key out
 class Field:
     """One key of an endpoint or parameter, as the dialog asks it.
 
-    `form`: "text" (kept as typed), "yaml" (a number, a list...: read as YAML), "type" (an
-    interface type, completed from the catalogue), "choice" (from `choices`) or "bool".
+    `form`: "text" (kept as typed), "yaml" (a number, a list...: read as YAML), "list" (a YAML
+    list, its brackets optional: `slow, fast`), "type" (an interface type, completed from the
+    catalogue), "choice" (from `choices`) or "bool".
     `short`: the key is part of the entry's short form (`topic:type:qos`...); an entry with
     any other key is kept as a mapping. `asked`: asked when the entry is added.
     """
@@ -101,8 +101,13 @@ ENTRY_FIELDS: dict[str, tuple[Field, ...]] = {
         Field("default", "Default", "Default value (e.g. 1.5, true, text, [1, 2])", "yaml", optional=True),
         Field("description", "Description", "Description (one line)", short=False, asked=False, optional=True),
         Field("read_only", "Read-only", "Read-only (set at start-up only)", "bool", short=False, asked=False),
-        Field("range", "Range", "Range as [min, max] or [min, max, step] (int and double)", "yaml", short=False,
+        Field("range", "Range", "Range as min, max or min, max, step (int and double)", "list", short=False,
               asked=False, optional=True),
+        Field("one_of", "Allowed values", "Allowed values, e.g. slow, fast (an array's: of each value)", "list",
+              short=False, asked=False, optional=True),
+        Field("length", "Number of values", "Number of values (arrays): n, [min, max], {min: n} or {max: n}",
+              "yaml", short=False, asked=False, optional=True),
+        Field("not_empty", "Not empty", "Not empty (strings)", "bool", short=False, asked=False),
     ),
 }
 
@@ -176,19 +181,7 @@ def entry_mapping(key: str, entry: object) -> dict:
         return {"period": entry}
     text = str(entry)
     if key == "parameters":
-        match = re.fullmatch(r"(?P<name>[^:=\s]+)\s*(?::\s*(?P<type>[^=\s]+))?\s*(?:=(?P<default>.*))?", text.strip(),
-                             re.S)
-        if not match:
-            return {"name": text}
-        mapping = {"name": match["name"]}
-        if match["type"]:
-            mapping["type"] = match["type"]
-        if match["default"] is not None:
-            try:
-                mapping["default"] = yaml.safe_load(match["default"])
-            except yaml.YAMLError:
-                mapping["default"] = match["default"]
-        return mapping
+        return parameter_mapping(text) or {"name": text}
     fields = [field.key for field in ENTRY_FIELDS[key] if field.short]
     parts = [part.strip() for part in text.split(":", len(fields) - 1)]
     return {field: part for field, part in zip(fields, parts, strict=False) if part != ""}
@@ -742,9 +735,11 @@ class Dialog:
 
         def candidate(answer: str) -> dict:
             value = answer.strip()
-            if field.form == "yaml" and value:
+            if field.form in ("yaml", "list") and value:
                 try:
                     value = yaml.safe_load(value)
+                    if field.form == "list" and not isinstance(value, list):
+                        value = yaml.safe_load(f"[{answer.strip()}]")
                 except yaml.YAMLError:
                     pass  # kept as text: the node's check says what is wrong with it
             elif field.form == "type" and kind.interface and value:
@@ -763,7 +758,7 @@ class Dialog:
                 return self._entry_error(node, kind, index, candidate(""))
             return self._entry_error(node, kind, index, candidate(answer))
 
-        default = "" if current is None else _yaml_text(current) if field.form == "yaml" else str(current)
+        default = "" if current is None else _yaml_text(current) if field.form in ("yaml", "list") else str(current)
         complete: list[str] = []
         if field.form == "type" and kind.interface:
             used = self._graph_type(kind, str(mapping.get("topic", mapping.get("name", ""))), str(node.get("name")))

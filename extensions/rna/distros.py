@@ -25,6 +25,9 @@ LANGUAGE_NAMES = {"cpp": "C++", "python": "Python"}
 # process's participant from discovering any other, so a node unit test's graph holds its own
 # nodes only. Humble has ROS_LOCALHOST_ONLY, which still discovers the machine's processes.
 DISCOVERY_OFF_DISTROS = ("jazzy", "kilted", "rolling")
+# Distributions whose rclcpp and rclpy call a node's post-set parameters callbacks once a set is in
+# place (add_post_set_parameters_callback, from Iron on); Humble has the on-set callbacks only.
+POST_SET_CALLBACK_DISTROS = ("jazzy", "kilted", "rolling")
 
 
 # Executors beyond the single- and multi-threaded ones, by language, and the distros whose

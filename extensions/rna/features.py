@@ -50,6 +50,10 @@ def node_features(node) -> frozenset[str]:
         "float_ranges": any(p.range and p.type.scalar == "double" for p in parameters),
         "string_parameters": any(p.type.scalar == "string" for p in parameters),
         "array_parameters": any(p.type.is_array for p in parameters),
+        "parameters": bool(parameters),
+        "parameter_checks": node.checks_parameters,
+        "one_of_parameters": any(p.one_of for p in parameters),
+        "on_set_parameters": node.on_set_parameters,
         node.executor: True,  # single_threaded, multi_threaded, static, events
         "callback_groups": bool(node.callback_groups),
         "mutually_exclusive_groups": any(g.type == "mutually_exclusive" for g in node.callback_groups),
@@ -86,6 +90,11 @@ ROS2_CPP = {
     "parameter_descriptors": Needs(("rcl_interfaces",), ("rcl_interfaces/msg/parameter_descriptor.hpp",)),
     "string_parameters": Needs(base=("<string>",)),
     "array_parameters": Needs(base=("<vector>",)),
+    # The Params view: a copy under a mutex; the names of those that changed, for the user's hook.
+    "parameters": Needs(base=("<mutex>", "<set>", "<string>", "<vector>"), user=("<set>", "<string>")),
+    "parameter_checks": Needs(base=("<string>",)),
+    "one_of_parameters": Needs(base=("<algorithm>", "<initializer_list>")),
+    "on_set_parameters": Needs(("rcl_interfaces",), ("rcl_interfaces/msg/set_parameters_result.hpp",)),
 }
 
 ROS2_PYTHON = {
@@ -118,6 +127,11 @@ ROS2_PYTHON = {
     "parameter_descriptors": Needs(("rcl_interfaces",), ("rcl_interfaces.msg:ParameterDescriptor",)),
     "integer_ranges": Needs(base=("rcl_interfaces.msg:IntegerRange",)),
     "float_ranges": Needs(base=("rcl_interfaces.msg:FloatingPointRange",)),
+    # The Params view, a frozen dataclass.
+    "parameters": Needs(base=("dataclasses:dataclass", "dataclasses:fields")),
+    # A value the node starts with that breaks a rule stops it as rclpy's own checks do.
+    "parameter_checks": Needs(base=("rclpy.exceptions:InvalidParameterValueException",)),
+    "on_set_parameters": Needs(("rcl_interfaces",), ("rcl_interfaces.msg:SetParametersResult",)),
 }
 
 ROS1_CPP = {
@@ -132,6 +146,9 @@ ROS1_CPP = {
     "action_clients": Needs(base=("actionlib/client/simple_action_client.h",)),
     "string_parameters": Needs(base=("<string>",)),
     "array_parameters": Needs(base=("<vector>",)),
+    # A value the node starts with that breaks a rule stops it, with one error.
+    "parameter_checks": Needs(base=("<cstdlib>", "<string>")),
+    "one_of_parameters": Needs(base=("<algorithm>", "<initializer_list>")),
 }
 
 ROS1_PYTHON = {
@@ -145,6 +162,7 @@ ROS1_PYTHON = {
     # time: a running goal gets a second to end when the node stops (_stop_action_server).
     "action_servers": Needs(base=("time", "actionlib:SimpleActionServer")),
     "action_clients": Needs(base=("actionlib:SimpleActionClient",), user=("actionlib_msgs.msg:GoalStatus",)),
+    "parameter_checks": Needs(base=("sys",)),
 }
 
 TABLES = {(2, "cpp"): ROS2_CPP, (2, "python"): ROS2_PYTHON, (1, "cpp"): ROS1_CPP, (1, "python"): ROS1_PYTHON}

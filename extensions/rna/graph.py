@@ -112,10 +112,11 @@ def _default_text(value: object) -> str:
     return json.dumps(value, ensure_ascii=False) if "\n" in text or "\r" in text else text
 
 
-def parameter_rows(node) -> list[tuple[str, str, str, str]]:
-    """(name, type, default, description) for each parameter, as README table cells."""
+def parameter_rows(node) -> list[tuple[str, str, str, str, str]]:
+    """(name, type, default, the values it takes, description) for each parameter, as README table cells."""
     return [(markdown_code(p.name), markdown_code(str(p.type)), markdown_code(_default_text(p.default)),
-             markdown_cell(" ".join(p.description.split()))) for p in node.parameters]
+             markdown_cell("; ".join(node.parameter_rules(p))), markdown_cell(" ".join(p.description.split())))
+            for p in node.parameters]
 
 
 def interface_rows(package) -> list[tuple[str, str]]:

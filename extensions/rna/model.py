@@ -18,6 +18,7 @@ from . import distros, features, launch_features, layout, names
 from .definitions import Definition
 from .interfaces import InterfaceType
 from .licenses import License
+from . import parameters as parameter_rules
 from .parameters import Parameter
 from .qos import Qos, intra_process_error
 
@@ -28,6 +29,8 @@ BASE_MEMBERS = ("node_handle", "private_node_handle", "start_goal_thread", "goal
 AUTOSTART_PARAMETER = "autostart"
 # The method of a node with diagnostics that fills in its status (the updater's task).
 DIAGNOSTICS_TASK = "on_diagnostics"
+# The method of a ROS 2 node with parameters that the base class calls after an accepted change.
+PARAMETERS_HOOK = "on_parameters_changed"
 
 
 @dataclass(frozen=True)
@@ -228,6 +231,8 @@ class Node:
     action_clients: tuple[Action, ...] = ()
     timers: tuple[Timer, ...] = ()
     parameters: tuple[Parameter, ...] = ()
+    # ROS 2: its distro's client libraries call post-set parameters callbacks (not Humble's).
+    post_set_callbacks: bool = True
     executor: str = DEFAULT_EXECUTOR
     threads: int = 0  # of a multi-threaded executor; 0: one per core
     callback_groups: tuple[CallbackGroup, ...] = ()
@@ -280,6 +285,29 @@ class Node:
         answered autostart, whose launch file sets it where the distro's launch_ros cannot drive
         the node in that format (rna.launch_features.autostart_form)."""
         return self.lifecycle and (self.component or self.autostart)
+
+    def parameter_rules(self, parameter: Parameter) -> tuple[str, ...]:
+        """The rules a parameter's values keep, in words (rna.parameters.rules)."""
+        return parameter_rules.rules(parameter, self.ros)
+
+    def parameter_comment(self, parameter: Parameter) -> str:
+        """The config file's comment above a parameter: its description and rules."""
+        return parameter_rules.comment(parameter, self.ros)
+
+    def parameter_checks(self, parameter: Parameter) -> tuple[tuple[str, str], ...]:
+        """(rule, reason) of each rule the node's own code checks (rna.parameters.checks)."""
+        return parameter_rules.checks(parameter, self.ros)
+
+    @property
+    def checks_parameters(self) -> bool:
+        """The base class itself checks rules of some parameter (beyond ROS 2's ranges and read-only)."""
+        return any(self.parameter_checks(parameter) for parameter in self.parameters)
+
+    @property
+    def on_set_parameters(self) -> bool:
+        """A ROS 2 base class has an on-set parameters callback: to refuse a set that breaks a rule,
+        or, where no post-set callback follows a set (Humble), to update its view of them."""
+        return self.ros == 2 and bool(self.parameters) and (self.checks_parameters or not self.post_set_callbacks)
 
     @property
     def diagnostics_members(self) -> tuple[str, ...]:

@@ -58,6 +58,11 @@ ROS2_DECLARED_PARAMETERS = frozenset({"use_sim_time", "start_type_description_se
 _C_MACROS = frozenset({"NULL", "EOF", "TRUE", "FALSE", "NAN", "INFINITY"})
 RESERVED_TYPE_NAMES = frozenset(python_names.CAPITALIZED_BUILTINS | {"None", "True", "False"} | _C_MACROS)
 
+# Names a field of a C++ struct cannot take besides keywords: GCC's GNU dialect (CMake's default)
+# defines `linux` and `unix` as 1, and a field named like a type the struct spells hides it.
+CPP_FIELD_CLASHES = {"linux": "GCC defines linux as a macro", "unix": "GCC defines unix as a macro",
+                     "int64_t": "a field int64_t hides the type its other int fields are"}
+
 # Names pycodestyle refuses as ambiguous, as they look like 1 and 0 (E741-E743).
 AMBIGUOUS_NAMES = frozenset({"l", "O", "I"})
 

@@ -14,7 +14,7 @@ from .answers import QUICK_LISTS
 from .definitions import SECTIONS
 from .licenses import LICENSES
 from .model import CALLBACK_GROUP_TYPES, EXECUTORS
-from .parameters import SCALAR_TYPES, TYPE_ALIASES
+from .parameters import INT_RANGE, SCALAR_TYPES, TYPE_ALIASES
 
 _KEYWORDS = sorted({*python_names.KEYWORDS, *python_names.SOFT_KEYWORDS, *names.CPP_KEYWORDS})
 # A part between '/' starts with a letter or '_'; ROS 2's {node} may stand in any part of it.
@@ -66,6 +66,7 @@ def _qos() -> dict:
 
 def _parameter() -> dict:
     types = [*SCALAR_TYPES, *(f"{t}[]" for t in SCALAR_TYPES), *TYPE_ALIASES]
+    count = {"type": "integer", "minimum": 0, "maximum": INT_RANGE[1]}
     return {"type": "array", "items": {"oneOf": [
         {"type": "string", "pattern": r"^[a-z][a-z0-9_]*\s*(:\s*[^=\s]+)?\s*(=.*)?$",
          "description": "short form name:type=default, e.g. rate:double=10.0"},
@@ -76,8 +77,16 @@ def _parameter() -> dict:
             "description": _text("what the parameter does"),
             "range": {"oneOf": [{"type": "array", "minItems": 2, "maxItems": 3, "items": {"type": "number"}},
                                 {"type": "object", "additionalProperties": False,
-                                 "properties": {key: {"type": "number"} for key in ("min", "max", "step")}}]},
-            "read_only": {"type": "boolean"},
+                                 "properties": {key: {"type": "number"} for key in ("min", "max", "step")}}],
+                      "description": "int and double: [min, max] or [min, max, step], the default inside"},
+            "read_only": {"type": "boolean", "description": "ROS 2: set at start-up only"},
+            "one_of": {"type": "array", "minItems": 1, "uniqueItems": True, "items": {"type": ["number", "string"]},
+                       "description": "the values allowed (an array's: of each element), the default among them"},
+            "length": {"oneOf": [count, {"type": "array", "minItems": 2, "maxItems": 2, "items": count},
+                                 {"type": "object", "additionalProperties": False, "minProperties": 1,
+                                  "properties": {"min": count, "max": count}}],
+                       "description": "arrays: how many values, exactly (3) or [min, max]"},
+            "not_empty": {"type": "boolean", "description": "strings: refuse ''"},
         }},
     ]}}
 

@@ -2,6 +2,10 @@
 
 Run with the ROS venv's Python (the test process itself has no rclpy):
   ros2_probe.py params NODE NAME...            print {name: value} as JSON
+  ros2_probe.py set NODE JSON                  set the parameters of a JSON object one by one,
+                                               as `ros2 param set` does; print each result as JSON
+  ros2_probe.py set_atomically NODE JSON       set them in one atomic set; print its result as JSON
+  ros2_probe.py trigger SERVICE                call a std_srvs/Trigger service; print the response as JSON
   ros2_probe.py lifecycle NODE TRANSITION...   drive a lifecycle node, print each new state
   ros2_probe.py busy_goal ACTION SERVICE TOPIC
       during a test_msgs/Fibonacci goal to ACTION, time the std_msgs/Int32 messages on
@@ -46,7 +50,8 @@ from rclpy.executors import SingleThreadedExecutor
 from lifecycle_msgs.msg import State, Transition, TransitionEvent
 from lifecycle_msgs.srv import ChangeState
 from rcl_interfaces.msg import ParameterType
-from rcl_interfaces.srv import GetParameters
+from rcl_interfaces.srv import GetParameters, SetParameters, SetParametersAtomically
+from rclpy.parameter import Parameter
 from rosgraph_msgs.msg import Clock
 from std_msgs.msg import Int32
 from std_srvs.srv import Trigger
@@ -85,6 +90,27 @@ def params(node, target, names):
         values[name] = list(getattr(value, field)) if field and "array" in field else (
             getattr(value, field) if field else None)
     print(json.dumps(values))
+
+
+def _parameters(text):
+    return [Parameter(name, value=value).to_parameter_msg() for name, value in json.loads(text).items()]
+
+
+def set_parameters(node, target, rest):
+    response = call(node, SetParameters, f"/{target}/set_parameters", SetParameters.Request(
+        parameters=_parameters(rest[0])))
+    print(json.dumps([{"successful": result.successful, "reason": result.reason} for result in response.results]))
+
+
+def set_parameters_atomically(node, target, rest):
+    response = call(node, SetParametersAtomically, f"/{target}/set_parameters_atomically",
+                    SetParametersAtomically.Request(parameters=_parameters(rest[0])))
+    print(json.dumps({"successful": response.result.successful, "reason": response.result.reason}))
+
+
+def trigger(node, service, _):
+    response = call(node, Trigger, service, Trigger.Request())
+    print(json.dumps({"success": response.success, "message": response.message}))
 
 
 def lifecycle(node, target, transitions):
@@ -344,7 +370,8 @@ def main():
     rclpy.init()
     node = rclpy.create_node("rna_test_probe")
     try:
-        {"params": params, "lifecycle": lifecycle, "busy_goal": busy_goal, "busy_service": busy_service,
+        {"params": params, "set": set_parameters, "set_atomically": set_parameters_atomically, "trigger": trigger,
+         "lifecycle": lifecycle, "busy_goal": busy_goal, "busy_service": busy_service,
          "clocked": clocked, "relay": relay, "transitions": transitions, "decoy": decoy, "sees": sees,
          "hears": hears, "goal_result": goal_result, "gating": gating}[command](node, target, rest)
     finally:

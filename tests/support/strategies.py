@@ -102,7 +102,9 @@ def node_names() -> st.SearchStrategy[str]:
 
 @functools.cache
 def parameter_names(ros: int) -> st.SearchStrategy[str]:
-    return snake_case(names.IDENTIFIER_MAX).filter(lambda name: names.parameter_name_error(name, ros) is None)
+    # Not one a C++ struct's field cannot take (refused in C++ nodes only), so any node may use it.
+    return snake_case(names.IDENTIFIER_MAX).filter(
+        lambda name: names.parameter_name_error(name, ros) is None and name not in names.CPP_FIELD_CLASHES)
 
 
 @functools.cache
@@ -406,6 +408,14 @@ def parameters(draw, ros: int) -> tuple[dict | str, str, object]:
         item["read_only"] = draw(st.booleans())
     if scalar in ("int", "double") and not is_array and draw(st.booleans()):
         item["range"] = draw(_ranges(scalar, default))
+    if scalar == "string" and not is_array and default and draw(st.integers(0, 3)) == 0:
+        item["not_empty"] = True
+    if scalar != "bool" and draw(st.integers(0, 2)) == 0:
+        allowed = draw(_one_of(scalar, default if is_array else [default], item.get("range"), ros))
+        if allowed is not None:
+            item["one_of"] = [value for value in allowed if value != "" or not item.get("not_empty")]
+    if is_array and draw(st.integers(0, 2)) == 0:
+        item["length"] = draw(_lengths(len(default)))
     expected = [_expected(v, scalar) for v in default] if is_array else _expected(default, scalar)
     if set(item) <= {"name", "type", "default"} and draw(st.booleans()):
         # The short form, its default written as YAML (as the config file spells it).
@@ -414,6 +424,36 @@ def parameters(draw, ros: int) -> tuple[dict | str, str, object]:
     if draw(st.integers(0, 3)) == 0 and _inferred(default, scalar):
         del item["type"]
     return item, scalar + "[]" * is_array, expected
+
+
+@st.composite
+def _one_of(draw, scalar: str, used: list, value_range, ros: int):
+    """The allowed values of a parameter: those `used` (the default or its elements), in a shuffled
+    list with others of its type (within its range: its bounds); None when a value cannot be one
+    (allowed texts are one line)."""
+    if scalar == "string" and any(value and names.one_line_error(value) for value in used):
+        return None
+    if value_range is not None:
+        bounds = [value_range["min"], value_range["max"]] if isinstance(value_range, dict) else value_range[:2]
+        # A range's bounds may lie beyond what ROS 1's parameter server holds; an allowed value may not.
+        low, high = INT_RANGES[ros]
+        bounds = [bound for bound in bounds if scalar == "double" or low <= bound <= high]
+        others = st.sampled_from(bounds) if bounds else st.nothing()
+    else:
+        others = {"int": _ints(ros), "double": DOUBLES, "string": st.one_of(st.just(""), one_line_text(40))}[scalar]
+    allowed = []
+    for value in [*used, *draw(st.lists(others, max_size=4))]:
+        value = float(value) if scalar == "double" else value
+        if value not in allowed:
+            allowed.append(value)
+    return draw(st.permutations(allowed))
+
+
+def _lengths(size: int) -> st.SearchStrategy:
+    """Length bounds an array of `size` elements keeps, in each form the answers take."""
+    return st.one_of(st.just(size), st.tuples(st.integers(0, size), st.integers(size, 2**31)).map(list),
+                     st.integers(1, size).map(lambda least: {"min": least}),
+                     st.integers(size, ARRAY_MAX + 5).map(lambda most: {"max": most}))
 
 
 def _expected(value: object, scalar: str) -> object:
@@ -675,6 +715,18 @@ def _broken_parameter(ros: int) -> st.SearchStrategy:
         {"name": "r", "type": "string", "default": "a", "range": [0, 1]},
         {"name": "r", "default": 1.0, "range": [0.0, math.inf]}, {"name": "r", "default": 1, "read_only": "no"},
         {"name": "r", "default": 1, "description": "two\nlines"}, "rate", "rate:double=[1", 7,
+        {"name": "r", "default": "a", "one_of": ["b", "c"]}, {"name": "r", "default": 1, "one_of": [1, "x"]},
+        {"name": "r", "default": True, "one_of": [True, False]}, {"name": "r", "default": 1, "one_of": []},
+        {"name": "r", "default": 1, "one_of": [1, 1]}, {"name": "r", "default": "a", "one_of": ["a", "b\nc"]},
+        {"name": "r", "default": 1, "range": [0, 2], "one_of": [1, 3]},
+        {"name": "r", "type": "int[]", "default": [1, 2], "one_of": [1]},
+        {"name": "r", "type": "int[]", "default": [1, 2], "length": 3},
+        {"name": "r", "type": "int[]", "default": [1, 2], "length": [3, 1]},
+        {"name": "r", "type": "int[]", "default": [1, 2], "length": {"min": 0}},
+        {"name": "r", "type": "int[]", "default": [1, 2], "length": {"least": 1}},
+        {"name": "r", "default": 1, "length": 1}, {"name": "r", "default": "", "not_empty": True},
+        {"name": "r", "default": 1, "not_empty": True}, {"name": "r", "default": "a", "not_empty": "yes"},
+        {"name": "r", "default": "a", "not_empty": True, "one_of": ["a", ""]},
         *([{"name": "use_sim_time", "default": True}, {"name": "r", "default": 5, "range": [0, 10, 3]},
            {"name": "r", "default": 0.25, "range": [0.0, 1.0, 0.1]}] if ros == 2 else
           [{"name": "r", "default": INT_RANGES[1][1] + 1}, {"name": "r", "type": "int[]", "default": [-2**31 - 1]}]),

@@ -18,9 +18,10 @@ from .. import catalogue, distros, names, python_names
 from .. import qos as qos_rules
 from ..interfaces import InterfaceType, normalised_type, parse_interface
 from ..model import (AUTOSTART_PARAMETER, BASE_MEMBERS, CALLBACK_GROUP_TYPES, DEFAULT_EXECUTOR, DIAGNOSTICS_TASK,
-                     EXECUTORS, Action, CallbackGroup, Node, Service, Timer, Topic)
+                     EXECUTORS, PARAMETERS_HOOK, Action, CallbackGroup, Node, Service, Timer, Topic)
 from ..qos import Qos
-from ..parameters import INT_RANGE, Parameter, ParameterType, coerce_default, infer_type, on_step, parse_type
+from ..parameters import (INT_RANGE, Parameter, ParameterType, coerce_default, coerce_scalar, infer_type,
+                          count_text, length_text, on_step, parse_type, spelled, value_text)
 from ..shapes import as_list, check_keys, load_yaml
 
 
@@ -167,26 +168,20 @@ def _parse_timer(item: object) -> Timer:
     return Timer(name, period)
 
 
+# The keys of a parameter's long form.
+PARAMETER_KEYS = ("name", "type", "default", "description", "range", "read_only", "one_of", "length", "not_empty")
 _SHORT_PARAMETER = re.compile(r"(?P<name>[^:=\s]+)\s*(?::\s*(?P<type>[^=\s]+))?\s*(?:=(?P<default>.*))?", re.S)
 
 
 def _parse_parameter(item: object, ros: int) -> Parameter:
     if isinstance(item, str):
-        match = _SHORT_PARAMETER.fullmatch(item.strip())
-        if not match:
+        mapping = _short_parameter(item)
+        if mapping is None:
             raise ValueError(f"parameter '{item}': write it as name:type=default, e.g. rate:double=10.0")
-        item = {"name": match["name"]}
-        if match["type"]:
-            item["type"] = match["type"]
-        if match["default"] is not None:
-            try:
-                item["default"] = yaml.safe_load(match["default"])
-            except yaml.YAMLError:
-                raise ValueError(f"parameter '{match['name']}': write the default as YAML (e.g. 1.5, true, [1, 2]): "
-                                 f"'{match['default']}' does not read as YAML") from None
+        item = mapping
     if not isinstance(item, Mapping):
         raise ValueError("write a parameter as 'name:type=default' or a mapping with name, type and default")
-    check_keys(item, ("name", "type", "default", "description", "range", "read_only"), "parameter")
+    check_keys(item, PARAMETER_KEYS, "parameter")
     name = item.get("name")
     error = names.parameter_name_error(name, ros)
     if error:
@@ -211,7 +206,116 @@ def _parse_parameter(item: object, ros: int) -> Parameter:
     if not isinstance(read_only, bool):
         raise ValueError(f"{what}: set read_only to true or false")
     value_range = _parse_range(item.get("range"), ptype, default, what, ros)
-    return Parameter(name, ptype, default, description.strip(), value_range, read_only)
+    not_empty = _parse_not_empty(item.get("not_empty", False), ptype, default, what)
+    one_of = _parse_one_of(item.get("one_of"), ptype, default, value_range, not_empty, what, ros)
+    length = _parse_length(item.get("length"), ptype, default, what)
+    return Parameter(name, ptype, default, description.strip(), value_range, read_only, one_of, length, not_empty)
+
+
+def _short_parameter(text: str, lenient: bool = False) -> dict | None:
+    """The mapping of a short 'name:type=default', None if it is not one. A default that is not
+    YAML is a ValueError, or kept as its text when `lenient`."""
+    match = _SHORT_PARAMETER.fullmatch(text.strip())
+    if not match:
+        return None
+    mapping = {"name": match["name"]}
+    if match["type"]:
+        mapping["type"] = match["type"]
+    if match["default"] is not None:
+        try:
+            mapping["default"] = yaml.safe_load(match["default"])
+        except yaml.YAMLError:
+            if not lenient:
+                raise ValueError(f"parameter '{match['name']}': write the default as YAML (e.g. 1.5, true, [1, 2]): "
+                                 f"'{match['default']}' does not read as YAML") from None
+            mapping["default"] = match["default"]
+    return mapping
+
+
+def parameter_mapping(item: object) -> dict:
+    """A parameter's answer as its long form: the short 'name:type=default' becomes its mapping."""
+    if not isinstance(item, str):
+        return dict(item) if isinstance(item, Mapping) else {}
+    return _short_parameter(item, lenient=True) or {}
+
+
+def _parse_not_empty(value: object, ptype: ParameterType, default: object, what: str) -> bool:
+    if not isinstance(value, bool):
+        raise ValueError(f"{what}: not_empty must be true or false")
+    if value and ptype.name != "string":
+        raise ValueError(f"{what}: only string parameters take not_empty (an array's length: `length`)")
+    if value and not default:
+        raise ValueError(f"{what}: the default is empty, which not_empty refuses")
+    return value
+
+
+def _parse_one_of(value: object, ptype: ParameterType, default: object, value_range, not_empty: bool, what: str,
+                  ros: int) -> tuple:
+    """The allowed values, each of the parameter's type, the default among them."""
+    if value is None:
+        return ()
+    if ptype.scalar == "bool":
+        raise ValueError(f"{what}: only int, double and string parameters (and their arrays) take one_of")
+    if not isinstance(value, list) or not value:
+        raise ValueError(f"{what}: one_of must be a list of the values allowed, e.g. [slow, fast]")
+    allowed = []
+    for given in value:
+        try:
+            item = coerce_scalar(given, ptype.scalar, ros, "allowed value")
+        except ValueError as error:
+            raise ValueError(f"{what}: one_of: {error}") from None
+        if isinstance(item, str) and item and names.one_line_error(item):
+            raise ValueError(f"{what}: one_of: allowed value {spelled(item)}: {names.one_line_error(item)}")
+        if item in allowed:
+            raise ValueError(f"{what}: one_of lists {value_text(item)} twice")
+        if value_range and not value_range[0] <= item <= value_range[1]:
+            raise ValueError(f"{what}: one_of: allowed value {value_text(item)} is outside the range "
+                             f"[{value_text(value_range[0])}, {value_text(value_range[1])}]")
+        if value_range and ros == 2 and not on_step(item, *value_range, ptype.scalar):
+            raise ValueError(f"{what}: one_of: allowed value {value_text(item)} is not the range's minimum plus a "
+                             f"whole number of steps of {value_text(value_range[2])}, which ROS 2 refuses")
+        if not_empty and item == "":
+            raise ValueError(f"{what}: one_of allows '', which not_empty refuses")
+        allowed.append(item)
+    allowed_text = ", ".join(value_text(item) for item in allowed)
+    for item in (default if ptype.is_array else [default]):
+        if item not in allowed:
+            kind = "default element" if ptype.is_array else "default"
+            raise ValueError(f"{what}: {kind} {spelled(item)} is not one of: {allowed_text}")
+    return tuple(allowed)
+
+
+def _parse_length(value: object, ptype: ParameterType, default: object, what: str) -> tuple[int, int | None] | None:
+    """An array's length bounds: `3` (exactly), `[least, most]` or `{min: least, max: most}`."""
+    if value is None:
+        return None
+    if not ptype.is_array:
+        raise ValueError(f"{what}: only array parameters take a length")
+    if isinstance(value, Mapping):
+        check_keys(value, ("min", "max"), f"{what} length")
+        if "min" not in value and "max" not in value:
+            raise ValueError(f"{what}: length needs a min, a max or both")
+        least, most = value.get("min", 0), value.get("max")
+    elif isinstance(value, list) and len(value) == 2:
+        least, most = value
+    elif isinstance(value, int) and not isinstance(value, bool):
+        least = most = value
+    else:
+        raise ValueError(f"{what}: length must be a number of values, [min, max] or {{min: .., max: ..}}")
+    for bound in (least, most):
+        if bound is not None and (isinstance(bound, bool) or not isinstance(bound, int)
+                                  or not 0 <= bound <= INT_RANGE[1]):
+            raise ValueError(f"{what}: length bounds must be whole numbers from 0 to {INT_RANGE[1]}")
+    if most is not None and least > most:
+        raise ValueError(f"{what}: length minimum {least} is above its maximum {most}")
+    if most == 0:
+        raise ValueError(f"{what}: length allows no value at all, and an array parameter needs a non-empty default")
+    if least == 0 and most is None:
+        raise ValueError(f"{what}: length {{min: 0}} allows any number of values: give a min above 0 or a max")
+    if len(default) < least or (most is not None and len(default) > most):
+        raise ValueError(f"{what}: the default has {count_text(len(default))}, but length asks for "
+                         f"{length_text((least, most))}")
+    return (least, most)
 
 
 def _parse_range(value: object, ptype: ParameterType, default: object, what: str, ros: int):
@@ -416,6 +520,7 @@ def parse_node(item: object, *, package: str, build_type: str, types: Types) -> 
                                  for x in as_list(item.get("action_clients"), "action_clients")),
             timers=tuple(_parse_timer(x) for x in as_list(item.get("timers"), "timers")),
             parameters=tuple(_parse_parameter(x, ros) for x in as_list(item.get("parameters"), "parameters")),
+            post_set_callbacks=types.distro is None or types.distro in distros.POST_SET_CALLBACK_DISTROS,
         )
         executor, threads = _parse_executor(item, ros, language, types.distro)
         if item.get("callback_groups") and ros == 1:
@@ -449,6 +554,10 @@ def _check_cpp_names(node: Node) -> None:
         raise ValueError(f"give it a shorter name: its name and the package's have {together} characters together: "
                          "a C++ node's have at "
                          f"most {names.CPP_PACKAGE_AND_NODE_MAX}, so generated lines fit 100 columns")
+    for parameter in node.parameters if node.ros == 2 and node.is_cpp else ():
+        if parameter.name in names.CPP_FIELD_CLASHES:
+            raise ValueError(f"parameter '{parameter.name}': {names.CPP_FIELD_CLASHES[parameter.name]}, and a C++ "
+                             "node keeps each parameter in a field of its Params struct named after it")
 
 
 def _check_node_names(node: Node) -> None:
@@ -465,6 +574,8 @@ def _check_node_names(node: Node) -> None:
     methods.extend((name, "a lifecycle callback") for name in names.LIFECYCLE_CALLBACKS)
     if node.diagnostics:
         methods.append((DIAGNOSTICS_TASK, "the diagnostics updater"))
+    if node.parameters and node.ros == 2:
+        methods.append((PARAMETERS_HOOK, "the method called when parameters change"))
     _check_unique(methods)
     # ROS 1 nodes keep parameters in members named after them; ROS 2 nodes ask for them by name.
     _check_unique([*((e.member, e.label) for e in node.endpoints), *methods,

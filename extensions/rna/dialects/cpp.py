@@ -7,7 +7,7 @@ from collections.abc import Iterable
 from functools import cached_property
 
 from .. import features, names
-from .lines import LIMITS, NESTED_BREAK, NESTED_SPLIT, SPLIT, columns, splittable
+from .lines import BREAK, LIMITS, NESTED_BREAK, NESTED_SPLIT, SPLIT, columns, splittable
 from ..parameters import INT_RANGE, ParameterType
 
 _SCALARS = {"bool": "bool", "int": "int64_t", "double": "double", "string": "std::string"}
@@ -125,7 +125,7 @@ class CppDialect:
         """A C++ literal for a field the starter code sets: a bool or a text."""
         return ("true" if value else "false") if isinstance(value, bool) else string(value)
     # Names the generated C++ uses unqualified in the node's classes.
-    RESERVED = frozenset({"CallbackReturn", "Node", "LifecycleNode"})
+    RESERVED = frozenset({"CallbackReturn", "Node", "LifecycleNode", "Params"})
 
     def __init__(self, node) -> None:
         self.node = node
@@ -150,6 +150,35 @@ class CppDialect:
     def parameter_default(self, parameter) -> str:
         """The default as a literal that breaks when its line is too long."""
         return literal(parameter.default, parameter.type, self.SCALARS, split=True)
+
+    def check(self, parameter, rule: str, value: str) -> str:
+        """The condition under which `value` (an expression of the parameter's C++ type) breaks one
+        of its rules (rna.parameters.checks); `item` is each element of an array's."""
+        if rule == "range":
+            low, high, _ = parameter.range
+            scalar = ParameterType(parameter.type.scalar)
+            return (f"{value} < {literal(low, scalar, self.SCALARS)} ||{BREAK} "
+                    f"{value} > {literal(high, scalar, self.SCALARS)}")
+        if rule in ("one_of", "each_one_of"):
+            scalar = ParameterType(parameter.type.scalar)
+            allowed = [literal(item, scalar, self.SCALARS, split=True).replace(SPLIT, NESTED_SPLIT)
+                       for item in parameter.one_of]
+            # A list that breaks after its brace and its commas when its line is too long.
+            members = "{" + NESTED_BREAK + f",{NESTED_BREAK} ".join(allowed) + "}"
+            return f"!is_one_of<{self.SCALARS[parameter.type.scalar]}>({value},{BREAK} {members})"
+        if rule == "length":
+            least, most = parameter.length
+            size = f"{value}.size()"
+            if least == most:
+                return f"{size} != {most}"
+            if most is None:
+                return f"{size} < {least}"
+            if least == 0:
+                return f"{size} > {most}"
+            return f"{size} < {least} ||{BREAK} {size} > {most}"
+        if rule == "not_empty":
+            return f"{value}.empty()"
+        raise ValueError(f"no check for the rule {rule}")
 
     def _needs(self, which: str) -> list[str]:
         return [item for need in features.needs(self.node) for item in getattr(need, which)]

@@ -208,6 +208,8 @@ def _depth(text: str, depth: int = 0) -> int:
     return depth
 
 
+# A Python statement whose continuation lines would line up with the block that follows it.
+_CONDITION = re.compile(r"\s*(if|elif|while) ")
 # The end of a C++ type before the name it declares: a template's '>' or a reference's '&'.
 _TYPE_END = re.compile(r"(?<![->&])>$|(?<!&) &$")
 
@@ -245,6 +247,8 @@ def fit_line(line: str, language: str, inside: bool = False, listing: bool = Fal
     declaration = declaration or (head.endswith("::") and not inside)
     keep = keep or (language == "cpp" and declaration)
     indent = own if keep else own + step
+    if language == "python" and not keep and _CONDITION.match(head):
+        indent += step  # pycodestyle: a condition's continuation stands apart from its block (E125)
     lines, current, cut = [], head, False
     reopened = False  # the current line starts with a piece of a cut string literal
     rest = pieces[1:]

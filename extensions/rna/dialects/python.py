@@ -14,7 +14,7 @@ from collections.abc import Iterable
 from functools import cached_property
 
 from .. import features, names, python_names
-from .lines import NESTED_BREAK, NESTED_SPLIT, SPLIT, splittable
+from .lines import BREAK, NESTED_BREAK, NESTED_SPLIT, SPLIT, splittable
 
 # Names the generated Python files import or define besides interface types.
 RESERVED = frozenset({
@@ -23,7 +23,11 @@ RESERVED = frozenset({
     "MultiThreadedExecutor", "MutuallyExclusiveCallbackGroup", "Node", "ParameterDescriptor",
     "ReentrantCallbackGroup", "SignalHandlerOptions", "SingleThreadedExecutor", "State",
     "TransitionCallbackReturn",
+    "Params", "SetParametersResult", "InvalidParameterValueException",
 })
+
+# The Python type of each parameter type's values in a node's Params (arrays: tuples of them).
+_PYTHON_TYPES = {"bool": "bool", "int": "int", "double": "float", "string": "str"}
 
 # Starter code's values for a std_msgs `data` field, changing with a counter.
 _SAMPLES = {
@@ -201,6 +205,45 @@ class PythonDialect:
     docstring_prefix = staticmethod(docstring_prefix)
     docstring_text = staticmethod(docstring_text)
     fstring_text = staticmethod(fstring_text)
+
+    @staticmethod
+    def field_type(parameter) -> str:
+        """The annotation of a parameter's field in Params: float, or tuple[float, ...] for an array."""
+        scalar = _PYTHON_TYPES[parameter.type.scalar]
+        return f"tuple[{scalar}, ...]" if parameter.type.is_array else scalar
+
+    @staticmethod
+    def check(parameter, rule: str, value: str, typed: bool = True) -> str:
+        """The condition under which `value` (an expression) breaks one of a parameter's rules
+        (rna.parameters.checks). Not `typed` (ROS 1, whose parameter server holds any type),
+        it is also true for a value of a type the rule cannot look at."""
+        if rule == "range":
+            low, high, _ = parameter.range
+            return f"not isinstance({value}, (int, float)) or not ({BREAK}{literal(low)} <= {value} <= {literal(high)})"
+        allowed = [literal(item, split=True).replace(SPLIT, NESTED_SPLIT) for item in parameter.one_of]
+        # A tuple or set that breaks after its bracket and its commas when its line is too long.
+        items = NESTED_BREAK + f",{NESTED_BREAK} ".join(allowed)
+        members = f"({items}{',' if len(allowed) == 1 else ''})"
+        if rule == "one_of":
+            return f"{value} not in {members}"
+        if rule == "each_one_of" and typed:
+            return f"not set({value}) <= {{{items}}}"
+        if rule == "each_one_of":
+            return f"not isinstance({value}, list) or any({BREAK}item not in {members} for item in {value})"
+        array = "" if typed else f"not isinstance({value}, list) or "
+        if rule == "length":
+            least, most = parameter.length
+            size = f"len({BREAK}{value})"
+            if least == most:
+                return f"{array}{size} != {most}"
+            if most is None:
+                return f"{array}{size} < {least}"
+            if least == 0:
+                return f"{array}{size} > {most}"
+            return f"{array}not {least} <= {size} <= {most}"
+        if rule == "not_empty":
+            return f"{value} == ''"
+        raise ValueError(f"no check for the rule {rule}")
 
     @cached_property
     def types(self) -> dict:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from .. import names
+from ..parameters import constraints
 from ..wording import threads_text
 from .cpp import CppDialect, number
 from .lines import BREAK
@@ -112,6 +113,8 @@ class Ros2Cpp(CppDialect):
         lines = [f"rcl_interfaces::msg::ParameterDescriptor {name};"]
         if parameter.description:
             lines.append(f"{name}.description ={BREAK} {self.string(parameter.description, split=True)};")
+        if parameter.has_checks:
+            lines.append(f"{name}.additional_constraints ={BREAK} {self.string(constraints(parameter), split=True)};")
         if parameter.read_only:
             lines.append(f"{name}.read_only = true;")
         if parameter.range:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from ..parameters import constraints
 from ..wording import threads_text
 from .lines import BREAK
 from .python import PythonDialect, import_block, literal
@@ -80,6 +81,8 @@ class Ros2Python(PythonDialect):
         fields = []
         if parameter.description:
             fields.append(f"description={literal(parameter.description, split=True)}")
+        if parameter.has_checks:
+            fields.append(f"additional_constraints={literal(constraints(parameter), split=True)}")
         if parameter.read_only:
             fields.append("read_only=True")
         if parameter.range:

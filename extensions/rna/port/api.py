@@ -59,8 +59,9 @@ class Member:
 PYTHON_MEMBERS = (
     Member("subscriber", "self.{id}_subscriber", "self.{id}_subscription", "rclpy's class is a Subscription"),
     Member("timer", "self.{id}_timer.shutdown()", "self.{id}_timer.cancel()"),
-    Member("parameter", "self.{name}", "self.get_parameter('{name}').value",
-           "a ROS 1 node keeps each parameter in a member; a ROS 2 node asks for its current value"),
+    Member("parameter", "self.{name}", "self.params.{name}",
+           "a ROS 1 node keeps each parameter in a member; a ROS 2 node's base class keeps their current "
+           "values in self.params"),
 )
 
 # The constructor: ROS 2's base class takes Node's keyword arguments and passes them on.
@@ -121,8 +122,9 @@ CPP_MEMBERS = (
            ".publishFeedback(feedback), .isPreemptRequested()",
            "goal_handle->succeed(result), ->abort, ->canceled (results and feedback as shared_ptrs), "
            "->publish_feedback(feedback), ->is_canceling()"),
-    Member("parameter", "{name}_", 'get_parameter("{name}").as_double() (as_int, as_bool, as_string, '
-           'as_double_array...)', "a ROS 1 node keeps each parameter in a member"),
+    Member("parameter", "{name}_", "params().{name}",
+           "a ROS 1 node keeps each parameter in a member; a ROS 2 node's base class keeps their current "
+           "values in params()"),
 )
 # The constructor takes rclcpp's NodeOptions and passes them to the base class.
 CPP_CONSTRUCTOR = ("Driver()", "explicit Driver(const rclcpp::NodeOptions & options = rclcpp::NodeOptions())\n"
@@ -133,11 +135,9 @@ CPP_PARAMETER_ACCESSORS = {"bool": "as_bool", "int": "as_int", "double": "as_dou
                            "string[]": "as_string_array"}
 
 
-def parameter_read(language: str, name: str, ros2_type: str = "") -> str:
-    """How ROS 2 code reads the node's parameter `name` (the base class's parameter view)."""
-    if language == "python":
-        return f"self.get_parameter('{name}').value"
-    return f'get_parameter("{name}").{CPP_PARAMETER_ACCESSORS[ros2_type]}()'
+def parameter_read(language: str, name: str) -> str:
+    """How ROS 2 code reads the node's parameter `name`: the base class's typed, current view."""
+    return f"self.params.{name}" if language == "python" else f"params().{name}"
 
 
 EXECUTE_CALLS = "py.api.action_server.calls"

@@ -436,13 +436,13 @@ class _Rewriter:
                                      masked):
                 edits.append(_Edit(match.start(), match.end(), f"{action}_action_client_->action_server_is_ready()",
                                    "cpp.api.action_client"))
-        for name, accessor in self.ctx.parameters:
+        for name, _ in self.ctx.parameters:
             for match in re.finditer(rf"(?<![\w.>:]){re.escape(name)}_\b(?!\s*\()", masked):
                 if not self.in_class(match.start()):
                     continue
                 if WRITTEN.match(masked, match.end()):
                     continue  # written: marked by the last pass
-                edits.append(_Edit(match.start(), match.end(), f'get_parameter("{name}").{accessor}()',
+                edits.append(_Edit(match.start(), match.end(), api.parameter_read("cpp", name),
                                    "cpp.api.parameter"))
         self.apply([edit for edit in edits if edit is not None])
 

@@ -23,6 +23,7 @@ three versions only, never on how Copier's line merge went.
 from __future__ import annotations
 
 import difflib
+import itertools
 import re
 from dataclasses import dataclass, field
 
@@ -30,6 +31,7 @@ import yaml
 
 from ..configs import yaml_entry, yaml_literal
 from ..model import Package
+from ..parameters import refusal
 from .project import Project, Render
 from .summary import Report
 
@@ -159,8 +161,19 @@ def merge(old_text: str, mine_text: str, new_text: str, descriptions: tuple[dict
     indent = places.indent
     old_descriptions, new_descriptions = descriptions
 
+    # The comment lines the template starts a file with (a ROS 1 file's first parameter follows them),
+    # up to the first parameter's own comment.
+    header = list(itertools.takewhile(lambda line: line.startswith("#"), old_text.split("\n")))
+    first = next(iter(layout(old_text.split("\n")).entries), None)
+    if header and first is not None and header[-1] == f"# {old_descriptions.get(first)}":
+        header.pop()
+
     def description_above(entry: Entry) -> int | None:
-        return entry.key - 1 if entry.key > places.start and lines[entry.key - 1].lstrip().startswith("#") else None
+        above = entry.key - 1
+        if entry.key <= places.start or not lines[above].lstrip().startswith("#"):
+            return None
+        in_header = above < len(header) and lines[:above + 1] == header[:above + 1]
+        return None if in_header else above
 
     edits: list[tuple[int, int, list[str]]] = []  # (from, to, replacement) on the user's lines
     for name, entry in places.entries.items():
@@ -255,12 +268,29 @@ def write_merged(project: Project, path: str, merged: Merged) -> bool:
     return True
 
 
-def descriptions_of(package: Package | None, path: str) -> dict:
+def _node_of(package: Package | None, path: str):
     match = CONFIG.search(path)
     if package is None or match is None:
-        return {}
-    node = next((node for node in package.nodes if node.name == match["node"]), None)
-    return {p.name: p.description for p in node.parameters if p.description} if node else {}
+        return None
+    return next((node for node in package.nodes if node.name == match["node"]), None)
+
+
+def descriptions_of(package: Package | None, path: str) -> dict:
+    node = _node_of(package, path)
+    return {p.name: node.parameter_comment(p) for p in node.parameters if node.parameter_comment(p)} if node else {}
+
+
+def refused_values(package: Package | None, path: str, text: str) -> list[str]:
+    """A note for each value of a merged config file that the node's new rules refuse: the node
+    would stop as it starts, so the user changes the value or the rule."""
+    node, values = _node_of(package, path), parameters(text) or {}
+    notes = []
+    for parameter in node.parameters if node else ():
+        reason = parameter.name in values and refusal(parameter, values[parameter.name], node.ros)
+        if reason:
+            notes.append(f"{path}: {parameter.name} is {yaml_literal(values[parameter.name])} there, but {reason}: "
+                         "the node would stop as it starts; change the value or the rule.")
+    return notes
 
 
 def merge_config_files(project: Project, old: Render, new: Render, packages: tuple[Package | None, Package | None],
@@ -281,3 +311,4 @@ def merge_config_files(project: Project, old: Render, new: Render, packages: tup
         for name, (yours, theirs) in merged.conflicts.items():
             report.notes.append(f"{path}: you tuned {name} to {yaml_literal(yours)} and its default is now "
                                 f"{yaml_literal(theirs)}: keep one.")
+        report.notes.extend(refused_values(packages[1], path, merged.text))
