@@ -5,8 +5,9 @@ Copier loads this file by path (copier-template-extensions), afresh for each Jin
 environment (a copy makes one, an update four). The template's code is the package `rna`
 beside it, imported by its plain name; an update runs the old and the new template version
 in one process, so another checkout's modules are dropped from sys.modules first.
-Everything the template changes in Copier's, Jinja's and Python's behaviour to go faster
-is in speedups.py; copier_run.py keeps what one run found (the answers file, the models).
+Everything the template changes in another library's behaviour (Copier's, Jinja's,
+prompt_toolkit's, Python's) is a patch of patches/, switchable; copier_run.py keeps what
+one run found (the answers file, the models).
 """
 
 from __future__ import annotations
@@ -14,8 +15,6 @@ from __future__ import annotations
 import functools
 import getpass
 import json
-import os
-import shutil
 import sys
 from collections.abc import Mapping
 from pathlib import Path
@@ -26,11 +25,11 @@ from copier_template_extensions import ContextHook
 from jinja2 import pass_context
 
 _HERE = Path(__file__).resolve().parent
-_OWN_MODULES = ("rna", "speedups", "copier_run", "code_cache")
+_OWN_MODULES = ("rna", "patches", "copier_run")
 
 
 def _forget_other_checkouts() -> None:
-    for name in [name for name in sys.modules if name in _OWN_MODULES or name.startswith("rna.")]:
+    for name in [name for name in sys.modules if name.split(".")[0] in _OWN_MODULES]:
         origin = getattr(sys.modules[name], "__file__", None) or ""
         if not Path(origin).resolve().is_relative_to(_HERE):
             del sys.modules[name]
@@ -40,9 +39,9 @@ _forget_other_checkouts()
 sys.modules.pop("copier_run", None)  # its module state is one worker's: loaded afresh, as this glue is
 sys.path.insert(0, str(_HERE))
 try:
-    import speedups
+    import patches
 
-    with speedups.template_modules(_HERE):
+    with patches.template_modules(_HERE):
         import copier_run
         import rna
         import rna.configs
@@ -71,10 +70,6 @@ finally:
 _run = copier_run.Run()  # what this worker found: the answers file before it, the models made
 absolute_source = copier_run.absolute_source  # a filter: the answers to record, the template's path absolute
 
-# Copier's prompts show their lines and an answer's error whole, wrapped at the terminal's width.
-rna.terminal.show_whole_validation_errors()
-rna.terminal.fit_copiers_questions()
-
 
 def _answers(context) -> rna.Answers:
     return rna.Answers({key: context.get(key) for key in context.keys() if not key.startswith("_")})
@@ -98,7 +93,7 @@ def answer_error(context, question: str) -> str:
     if error is None and (previous := _run.previous_answers(context)) is not None:
         refused = rna.update.refusals.switch_error(previous, context)
         error = refused.message if refused and refused.question == question else None
-    # Shown whole under the prompt, wrapped at the terminal's width (rna/terminal.py).
+    # Shown whole under the prompt, wrapped at the terminal's width (the patch whole_errors).
     return error or ""
 
 
@@ -107,10 +102,8 @@ def _files_in_the_way(context, name: str, languages) -> list[str]:
     destination = (context.get("_copier_conf") or {}).get("dst_path")
     if destination is None or (Path(destination) / answers_file_name(context)).exists():
         return []
-    ros = rna.distros.generation(context.get("ros_distro"))
-    package = context.get("package_name")
-    return [path for language in languages for path in rna.layout.node_files(package, name, ros, language)
-            if (Path(destination) / path).exists()]
+    return rna.workspace.files_in_the_way(Path(destination), context.get("package_name"), name,
+                                          rna.distros.generation(context.get("ros_distro")), languages)
 
 
 @pass_context
@@ -163,7 +156,7 @@ def nodes_dialog(context) -> str:
         rules = rna.dialog.Rules(context.get("package_name") or "pkg", rna.update.resolve.build_type_of(context),
                                  answers.types)
         destination = (context.get("_copier_conf") or {}).get("dst_path")
-        found = _found(str(destination)) if destination is not None else ()
+        found = copier_run.interfaces_found(str(destination)) if destination is not None else ()
         own = {}
         for (kind, name) in answers.types.own:
             own.setdefault(kind, []).append(name)
@@ -199,13 +192,8 @@ def found_interfaces(context, kind: str | None = None) -> str:
     destination = (context.get("_copier_conf") or {}).get("dst_path")
     if destination is None:
         return ""
-    found = [name for name in _found(str(destination)) if kind is None or f"/{kind}/" in name]
+    found = [name for name in copier_run.interfaces_found(str(destination)) if kind is None or f"/{kind}/" in name]
     return "".join("\n" + line for line in rna.wording.found_lines(found))
-
-
-@functools.cache
-def _found(destination: str) -> tuple[str, ...]:
-    return tuple(rna.workspace.find_interfaces(Path(destination)))
 
 
 @pass_context
@@ -217,13 +205,8 @@ def existing_package(context) -> dict | None:
 
 @pass_context
 def answers_file_name(context) -> str:
-    """`.copier-answers.yml`, or for a node added to a package `.copier-answers.rna-<node>.yml`."""
-    if context.get("target") != "node":
-        return ".copier-answers.yml"
-    nodes = context.get("nodes") or [{}]
-    first = nodes[0] if isinstance(nodes, list) and nodes else {}
-    name = first.get("name") if isinstance(first, dict) else first
-    return f".copier-answers.rna-{name or context.get('node_name') or 'node'}.yml"
+    """copier.yml's `_answers_file`: one per package, or per node added to a package (rna/layout.py)."""
+    return rna.layout.answers_file_name(context.get("target"), context.get("nodes"), context.get("node_name"))
 
 
 @pass_context
@@ -242,18 +225,12 @@ def python_init_file(context, ros: int) -> str:
     return rna.layout.python_init_file(context.get("package_name"), context.get("target"), ros)
 
 
-def package_files() -> str:
-    """The files of a whole package, one per line, as `_exclude` patterns of the destination's root."""
-    return "\n".join("/" + path for path in rna.layout.PACKAGE_FILES)
-
-
 @pass_context
 def porting_from_ros1(context) -> bool:
     """Whether this update ports a ROS 1 package to ROS 2 (the build type then defaults to
     ament_cmake, which holds C++ and Python nodes alike, as catkin did)."""
     previous = _run.previous_answers(context)
-    return (previous is not None and rna.distros.generation(previous.get("ros_distro")) == 1
-            and rna.distros.generation(context.get("ros_distro")) == 2)
+    return previous is not None and rna.distros.ports(previous.get("ros_distro"), context.get("ros_distro"))
 
 
 def lab() -> dict:
@@ -266,15 +243,7 @@ def lab() -> dict:
 
 def git_config(key: str) -> str:
     """The user's git setting (user.name, user.email) as a default answer, or ""."""
-    return _git_user_settings().get(key, "")
-
-
-_git_user_settings = functools.cache(rna.git.user_settings)  # one git process a worker, for both defaults
-
-
-def copier_command() -> str:
-    """How the user runs this Copier again (rna/terminal.py), for the commands messages print."""
-    return rna.terminal.copier_command(dict(os.environ), sys.executable, shutil.which)
+    return copier_run.git_user_settings().get(key, "")
 
 
 class RnaExtension(ContextHook):
@@ -284,7 +253,7 @@ class RnaExtension(ContextHook):
 
     def __init__(self, environment):
         super().__init__(environment)
-        speedups.install(environment)
+        patches.install(environment)
         environment.globals.update(
             answer_error=answer_error, answers_file_name=answers_file_name, base_files=base_files,
             builds_interfaces=rna.distros.BUILDS_INTERFACES, languages=rna.distros.languages,
@@ -293,8 +262,8 @@ class RnaExtension(ContextHook):
             nodes_dialog=nodes_dialog, nodes_dialog_pending=nodes_dialog_pending,
             existing_package=existing_package, found_interfaces=found_interfaces, git_config=git_config,
             porting_from_ros1=porting_from_ros1, in_git_work_tree=rna.git.in_work_tree, lab=lab,
-            docs_url=rna.lab.docs_url, copier_command=copier_command, updating=updating,
-            login_name=getpass.getuser, package_files=package_files,
+            docs_url=rna.lab.docs_url, copier_command=rna.terminal.copier_command, updating=updating,
+            login_name=getpass.getuser, package_files=rna.layout.package_files_excluded,
             python_init_file=python_init_file, user_files=user_files,
             # Line-breaking markers (rna/dialects/lines.py).
             br=rna.dialects.lines.BREAK, sbr=rna.dialects.lines.SPLIT, wrap=rna.dialects.lines.WRAP,

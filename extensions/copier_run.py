@@ -3,7 +3,9 @@
 Copier renders about ten strings per file, each with a render context of its own that
 the glue's context hook sees, so what the hook needs is found once: the answers file
 that was in the destination before the run, whether it was edited by hand, the answers
-given with --data checked, the package model of a set of answers. Copier loads the glue
+given with --data checked, the package model of a set of answers; and what the questions'
+defaults need once (the interfaces around the destination, the user's git settings).
+Copier loads the glue
 afresh for each of its workers (a copy has one, an update four), and the glue keeps one
 `Run` per load; what outlives a worker (parsed answers files, the update's kept renders)
 is process-wide.
@@ -27,8 +29,10 @@ from pathlib import Path
 import yaml
 
 import rna
+import rna.git
 import rna.update.kept
 import rna.update.resolve
+import rna.workspace
 
 
 def process_wide() -> types.ModuleType:
@@ -204,6 +208,15 @@ def question_types(template: str) -> dict[str, str]:
     """Each question's `type:` in the template's copier.yml (Copier casts given answers to it)."""
     return {name: spec.get("type", "str") for name, spec in copier_yml(template).items()
             if not name.startswith("_") and isinstance(spec, dict)}
+
+
+@functools.cache
+def interfaces_found(destination: str) -> tuple[str, ...]:
+    """The interfaces on disk around the destination (rna/workspace.py), looked for once a worker."""
+    return tuple(rna.workspace.find_interfaces(Path(destination)))
+
+
+git_user_settings = functools.cache(rna.git.user_settings)  # one git process a worker, for both defaults
 
 
 # ─── The update's renders, kept for the after-update step (rna/update/kept.py) ───

@@ -52,6 +52,22 @@ BASE_SUFFIX = "_base"
 # Files of a whole package, which a node added to an existing package never writes.
 PACKAGE_FILES = (".gitignore", "README.md", "LICENSE", "package.xml", "CMakeLists.txt", "setup.py", "setup.cfg",
                  "resource", "test", "launch")
+ANSWERS_FILE = ".copier-answers.yml"
+
+
+def answers_file_name(target: object, nodes: object, node_name: object) -> str:
+    """The answers file: `.copier-answers.yml`, or for a node added to a package (target 'node')
+    `.copier-answers.rna-<node>.yml`, so that each node added keeps answers of its own."""
+    if target != "node":
+        return ANSWERS_FILE
+    first = nodes[0] if isinstance(nodes, list) and nodes else {}
+    name = first.get("name") if isinstance(first, dict) else first
+    return f".copier-answers.rna-{name or node_name or 'node'}.yml"
+
+
+def package_files_excluded() -> str:
+    """The files of a whole package, one per line, as `_exclude` patterns of the destination's root."""
+    return "\n".join("/" + path for path in PACKAGE_FILES)
 
 
 def user_file(package: str, name: str, ros: int, language: str) -> str:

@@ -28,7 +28,7 @@ run, no warm-up):
             and Copier's own update and copy of a one-file template (the update's floor)
   catkin    the same for a 20-node catkin (noetic) package
 
-The template keeps compiled code between runs (extensions/speedups.py): here in the
+The template keeps compiled code between runs (extensions/patches/code_cache.py): here in the
 scratch folder, filled by one copy before the rounds; `default_cold` runs with it off.
 
 --profile adds where the time goes for the default package, 1 and 50 nodes and the updates
