@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import sys
 import tempfile
+import traceback
 from pathlib import Path
 
 import yaml
@@ -24,7 +25,7 @@ import patches  # noqa: E402 - next to this file
 with patches.template_modules(HERE):
     from rna import Package, build_package  # the template's own package, next to this file
     from rna.update import blocks, config_merge, drift, kept, merge, port, protect, rename_answers, renames
-    from rna.update.project import Project, Render, render
+    from rna.update.project import Project, Render, git, render
     from rna.update.summary import Report, changes, summary
 
 MARKERS = ("<<<<<<< before updating", ">>>>>>> after updating")
@@ -40,20 +41,15 @@ def package_of(answers: dict, report: Report) -> Package | None:
         return None
 
 
-def conflicts(project: Project) -> list[str]:
-    """Files the merge left conflict markers in, and .rej files."""
+def conflicts(project: Project, touched: set[str]) -> list[str]:
+    """Files the merge left conflict markers in, and .rej files, among the files the update touched."""
     found = []
-    for path in sorted(project.current_files()):
+    for path in sorted(touched):
         if path.endswith(".rej"):
             found.append(path)
         elif any(marker in (project.text(path) or "") for marker in MARKERS):
             found.append(path)
     return found
-
-
-def snapshot(project: Project, paths: set[str], committed: bool) -> dict[str, str]:
-    read = project.committed if committed else project.text
-    return {path: text for path in paths if (text := read(path)) is not None}
 
 
 def render_of(kind: str, answers: dict, renders: str | None, template: Path, scratch: str) -> Render:
@@ -66,7 +62,17 @@ def render_of(kind: str, answers: dict, renders: str | None, template: Path, scr
 
 def main(answers_file: str, project_root: Path | None = None, template: Path = HERE.parent,
          renders: str | None = None, conflict: str | None = None) -> int:
-    project = Project(project_root or Path.cwd(), answers_file, conflict)
+    """Finish the update; 0 when it is done, 1 when the user has items to do or it failed."""
+    root = project_root or Path.cwd()
+    try:
+        return finish(answers_file, root, template, renders, conflict)
+    except Exception as error:  # noqa: BLE001 - whatever broke, the user's package must come back whole
+        print(rolled_back(root, error), file=sys.stderr)
+        return 1
+
+
+def finish(answers_file: str, root: Path, template: Path, renders: str | None, conflict: str | None) -> int:
+    project = Project(root, answers_file, conflict)
     old_answers = yaml.safe_load(project.committed(answers_file) or "{}") or {}
     new_answers = yaml.safe_load(project.text(answers_file) or "{}") or {}
     renamed = rename_answers.renames(new_answers)  # new name -> old name, said by the answers once
@@ -78,6 +84,7 @@ def main(answers_file: str, project_root: Path | None = None, template: Path = H
         old = render_of("old", old_answers, renders, template, scratch)
         new_answers = rename_answers.without_keys(new_answers)  # the renames are this update's, not answers
         new = render_of("new", new_answers, renders, template, scratch)
+        project.owned |= old.files | new.files
         packages = (package_of(old_answers, report), package_of(new_answers, report))
         handled = set()
         ported = port.porting(packages)  # ROS 1 -> ROS 2: the port carries every file of the user's
@@ -97,15 +104,26 @@ def main(answers_file: str, project_root: Path | None = None, template: Path = H
         blocks.leave_out_user_declarations(project, new, report)
         blocks.dropped_but_used(project, old, report)
         blocks.unreadable_package_xml(project, report)
-        report.conflicts = conflicts(project)
-        before = snapshot(project, project.committed_files, committed=True)
-        after = snapshot(project, project.current_files(), committed=False)
-        generated = {path: old.text(path) for path in before}
+        added, changed, removed = project.changed_files()
+        report.conflicts = conflicts(project, added | changed)
+        report.unwritable = list(project.unwritable)
+        edited = {path for path in changed if protect.edited(project, old, path)}
     kept.discard(renders)
     versions = f"{old_answers.get('_commit')} -> {new_answers.get('_commit')}"
     moved = {path for pair in report.renamed for path in pair}
-    print(summary(report, changes(before, after, generated, {answers_file} | moved), versions))
+    print(summary(report, changes(added, changed, removed, edited, {answers_file} | moved), versions))
     return 1 if report.failed else 0
+
+
+def rolled_back(root: Path, error: Exception) -> str:
+    """Put the project back as the user committed it (Copier updates a clean project only, so
+    whatever is not committed is the update's), and say so in one line."""
+    for command in (("reset", "-q", "--", "."), ("checkout", "-q", "HEAD", "--", "."), ("clean", "-fdq", "--", ".")):
+        git(root, *command, check=False)
+    where = traceback.extract_tb(error.__traceback__)[-1]
+    return (f"rna-template: the update failed while finishing ({type(error).__name__}: {error}, at "
+            f"{Path(where.filename).name}:{where.lineno}), so it was undone: the package is as you committed it. "
+            "Please report this, with the command you ran.")
 
 
 if __name__ == "__main__":

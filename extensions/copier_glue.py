@@ -225,6 +225,11 @@ def python_init_file(context, ros: int) -> str:
     return rna.layout.python_init_file(context.get("package_name"), context.get("target"), ros)
 
 
+def package_files(ros_distro: str | None = None) -> str:
+    """The files of a whole package, as `_exclude` patterns, for a node added to a package."""
+    return rna.layout.package_files_excluded(rna.distros.generation(ros_distro))
+
+
 @pass_context
 def porting_from_ros1(context) -> bool:
     """Whether this update ports a ROS 1 package to ROS 2 (the build type then defaults to
@@ -263,7 +268,7 @@ class RnaExtension(ContextHook):
             existing_package=existing_package, found_interfaces=found_interfaces, git_config=git_config,
             porting_from_ros1=porting_from_ros1, in_git_work_tree=rna.git.in_work_tree, lab=lab,
             docs_url=rna.lab.docs_url, copier_command=rna.terminal.copier_command, updating=updating,
-            login_name=getpass.getuser, package_files=rna.layout.package_files_excluded,
+            login_name=getpass.getuser, package_files=package_files,
             python_init_file=python_init_file, user_files=user_files,
             # Line-breaking markers (rna/dialects/lines.py).
             br=rna.dialects.lines.BREAK, sbr=rna.dialects.lines.SPLIT, wrap=rna.dialects.lines.WRAP,
@@ -305,6 +310,7 @@ class RnaExtension(ContextHook):
         phase, operation = str(context.get("_copier_phase")), str(context.get("_copier_operation"))
         if operation == "update" and _run.edited_by_hand(context):
             raise UserMessageError(f"rna-template: {rna.update.refusals.hand_edit_error(conf.get('answers_file'))}")
+        _refuse_to_copy_over_a_package(context)
         if phase == "tasks":
             copier_run.keep_update_render(context, absolute_source(context.get("_copier_answers") or {}))
         elif phase == "migrate" and operation == "update":
@@ -321,6 +327,7 @@ class RnaExtension(ContextHook):
             raise UserMessageError(f"rna-template: invalid answer to 'nodes': {renamed} (nothing was written)")
         if previous is not None:  # an update: answers were in the destination before this run
             _refuse_switch(previous, context)
+            _refuse_names_copier_cannot_update(context)
             _run.keep_languages(context.get("nodes"), previous)
         answers = {key: context.get(key) for key in (*rna.answers.QUESTIONS, "copyright_year")}
         # Whether it is an update is part of the key: Copier renders some names before it
@@ -352,19 +359,62 @@ def _check_given_answers(context) -> None:
     """Answers given with --data or --data-file, checked before Copier reads them.
 
     Copier checks a choice, or parses a YAML answer, itself when it reaches the question,
-    and a broken one ends in a traceback; this says the same in one line, first.
+    and a broken one ends in a traceback; this says the same in one line, first. A choice
+    that depends on other answers (a build type for the distro) is checked as soon as they
+    are known: given, in the answers file being updated, or answered before it.
     """
     conf = context.get("_copier_conf") or {}
     given = conf.get("data") or {}
-    previous = _run.previous_answers(context) if "ros_distro" in given else None
-    if previous is not None:  # before any other answer is read in the light of the new distro
-        _refuse_switch(previous, given, conf.get("dst_path"))
-    if not given or not _run.given_answers_unchecked(given):
+    previous = _run.previous_answers(context) if given else None
+    if previous is not None:  # an update: before any other answer is read in the light of these
+        if "ros_distro" in given:
+            _refuse_switch(previous, given, conf.get("dst_path"))
+        _stop(rna.update.refusals.first_copy_error(given))
+    if not given:
         return
+    checked = _run.given_answers_checked(given)
+    if len(checked) == len(given) or _inside_a_validator():
+        return
+    around = {key: context.get(key) for key in ("ros_distro", "build_type") if key in context.keys()}
     try:
-        rna.answers.check_given(given, copier_run.question_types(str(conf.get("src_path"))))
+        checked |= rna.answers.check_given(given, copier_run.question_types(str(conf.get("src_path"))), around,
+                                           skip=checked)
     except rna.AnswerError as error:
         raise UserMessageError(f"rna-template: {error}") from None
+
+
+def _inside_a_validator() -> bool:
+    """Whether Copier is rendering a question's validator, which turns any error into a
+    traceback ("Validation error for question ..."): a given answer is checked at the next
+    render instead (the question's own `when` comes before its answer is validated)."""
+    frame = sys._getframe(2)
+    while frame is not None:
+        if frame.f_code.co_name == "validate_answer":
+            return True
+        frame = frame.f_back
+    return False
+
+
+def _refuse_to_copy_over_a_package(context) -> None:
+    """`copier recopy` (a copy, to Copier) or `copier copy` into a package this template made
+    would replace the user's lines in every file they share with the template: stop first."""
+    if str(context.get("_copier_operation")) != "copy" or _run.previous_answers(context) is None:
+        return
+    name = (context.get("_copier_conf") or {}).get("answers_file")
+    raise UserMessageError(f"rna-template: {rna.update.refusals.copy_over_error(name)}")
+
+
+def _refuse_names_copier_cannot_update(context) -> None:
+    """A file of the project whose name is not UTF-8 makes Copier's update fail half-way, after
+    it wrote the new version (copier._tools.normalize_git_path, 9.19): stop before it writes."""
+    destination = str((context.get("_copier_conf") or {}).get("dst_path"))
+    if destination not in _names_checked:
+        _names_checked[destination] = rna.update.refusals.undecodable_name(Path(destination))
+    if _names_checked[destination] is not None:
+        raise UserMessageError(f"rna-template: {rna.update.refusals.name_error(_names_checked[destination])}")
+
+
+_names_checked: dict[str, str | None] = {}
 
 
 def _refuse_switch(previous: Mapping, answers: Mapping, destination: object = None) -> None:

@@ -29,6 +29,7 @@ from pathlib import Path
 import yaml
 
 import rna
+import rna.files
 import rna.git
 import rna.update.kept
 import rna.update.resolve
@@ -49,7 +50,8 @@ class Run:
         self.found_answers: dict[tuple[str, str], tuple[str, object] | None] = {}
         self.hand_edited: dict[tuple[str, str], bool] = {}
         self.languages_kept: dict[int, object] = {}
-        self.given_checked: list[Mapping] = []  # Copier's `data`: one object per worker
+        self.given_checked: list[tuple[Mapping, set[str]]] = []  # Copier's `data` (one object per worker),
+        # and the questions of it checked so far
         self.models: dict[bytes | str, object] = {}
         self.last_key: list = [(), None, None]  # the answer objects, where, and their key
 
@@ -83,12 +85,14 @@ class Run:
             self.hand_edited[key] = read is not None and rna.update.resolve.edited_by_hand(*read) is True
         return self.hand_edited[key]
 
-    def given_answers_unchecked(self, given: Mapping) -> bool:
-        """True the first time a worker's given answers are seen (the hook runs at every render)."""
-        if any(given is checked for checked in self.given_checked):
-            return False
-        self.given_checked.append(given)
-        return True
+    def given_answers_checked(self, given: Mapping) -> set[str]:
+        """The questions of a worker's given answers checked so far (the hook runs at every render;
+        a choice that depends on other answers waits for them), to be added to."""
+        found = next((checked for held, checked in self.given_checked if held is given), None)
+        if found is None:
+            found = set()
+            self.given_checked.append((given, found))
+        return found
 
     def keep_languages(self, nodes, previous: Mapping) -> None:
         """Nodes given without a language keep theirs: done in place, so once per list of nodes."""
@@ -161,9 +165,8 @@ def answers_file(path: str, mtime_ns: int, size: int) -> tuple[str, object] | No
 
 
 def _read_answers_file(path: str) -> tuple[str, object] | None:
-    try:
-        text = Path(path).read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError):
+    text = rna.files.text(Path(path).parent, Path(path).name, owned=True)
+    if text is None:
         return None
     try:
         return text, yaml.safe_load(text)
@@ -197,6 +200,7 @@ def absolute_source(answers: Mapping, cwd: str | None = None) -> dict:
 def copier_yml(template: str) -> dict:
     """The template's copier.yml as written (libyaml's parser when PyYAML has it: it is read once a run)."""
     try:
+        # not through rna/files.py: the template's
         loaded = yaml.load(Path(template, "copier.yml").read_text(encoding="utf-8"),
                            Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
     except (OSError, yaml.YAMLError):

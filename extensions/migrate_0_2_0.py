@@ -16,7 +16,7 @@ from pathlib import Path
 import yaml
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rna import build_package  # noqa: E402 - the template's own package, next to this file
+from rna import build_package, files  # noqa: E402 - the template's own package, next to this file
 
 TARGET_COMMANDS = ("add_dependencies", "install", "set_target_properties", "target_compile_definitions",
                    "target_compile_features", "target_compile_options", "target_include_directories",
@@ -41,13 +41,16 @@ def rename_targets(text: str, nodes: list[str]) -> tuple[str, list[str]]:
 
 
 def main(project: Path, answers_file: str) -> int:
-    package = build_package(yaml.safe_load((project / answers_file).read_text()))
+    package = build_package(yaml.safe_load(files.text(project, answers_file, owned=True) or "{}"))
     if package.ros != 1 or not package.cpp_nodes:
         return 0
-    cmake = project / package.dir / "CMakeLists.txt"
-    text, changes = rename_targets(cmake.read_text(), [node.name for node in package.cpp_nodes])
+    cmake = f"{package.dir}/CMakeLists.txt"
+    content = files.read(project, cmake, owned=True)
+    if content is None or content.text is None:
+        return 0
+    text, changes = rename_targets(content.text, [node.name for node in package.cpp_nodes])
     if changes:
-        cmake.write_text(text)
+        files.write(project, cmake, text, like=content)
         print(f"rna-template 0.2.0: C++ targets are now named ${{PROJECT_NAME}}_<node>; renamed in your lines "
               f"of {package.dir}/CMakeLists.txt: {', '.join(changes)}")
     return 0

@@ -85,19 +85,54 @@ def test_build_file_edits_are_idempotent_blocks(tmp_path):
     assert integrate.package_xml(xml, grown)[0] == xml
 
 
-def test_catkin_components_are_added_to_find_package(tmp_path):
+def catkin_model(language: str = "cpp", **node) -> object:
+    return build_package({**FIXED_ANSWERS, "package_name": "hand_rover", "description": "d", "license": "MIT",
+                          "ros_distro": "noetic", "build_type": "catkin", "target": "node",
+                          "nodes": [{"name": "listener", "language": language, **node}]})
+
+
+def test_catkin_components_are_appended_to_the_users_own_call(tmp_path):
+    """The user's find_package(catkin ...) gains what the node needs at its end, in its own layout;
+    every other line stays as it was."""
     package = existing_packages.catkin(tmp_path / "pkg")
-    model = build_package({**FIXED_ANSWERS, "package_name": "hand_rover", "description": "d", "license": "MIT",
-                           "ros_distro": "noetic", "build_type": "catkin", "target": "node",
-                           "nodes": [{"name": "listener", "subscribers": ["odom:nav_msgs/msg/Odometry"]}]})
-    text, explained = integrate.catkin_cmake_lists((package / "CMakeLists.txt").read_text(), model)
-    assert "find_package(catkin REQUIRED COMPONENTS\n  nav_msgs\n  roscpp\n  std_msgs\n)" in text
+    model = catkin_model(subscribers=["odom:nav_msgs/msg/Odometry"])
+    cmake = (package / "CMakeLists.txt").read_text()
+    text, explained = integrate.catkin_cmake_lists(cmake, model)
+    assert "find_package(catkin REQUIRED COMPONENTS\n  roscpp\n  std_msgs\n  nav_msgs\n)" in text
     assert explained[0] == "CMakeLists.txt: find_package(catkin) also finds nav_msgs"
-    python = build_package({**FIXED_ANSWERS, "package_name": "hand_rover", "description": "d", "license": "MIT",
-                            "ros_distro": "noetic", "build_type": "catkin", "target": "node",
-                            "nodes": [{"name": "listener", "language": "python"}]})
-    with pytest.raises(ValueError, match="catkin_python_setup"):
-        integrate.catkin_cmake_lists(text, python)
+    assert set(cmake.splitlines()) <= set(text.splitlines())
+    comment = "## as in find_package(catkin REQUIRED COMPONENTS xyz)\n"
+    quoted = cmake.replace("find_package(catkin", comment + "find_package(catkin")
+    assert integrate.catkin_cmake_lists(quoted, model)[0] == text.replace("find_package(catkin",
+                                                                          comment + "find_package(catkin", 1)
+    for call, grown in (
+            ("find_package(catkin REQUIRED COMPONENTS roscpp std_msgs)",
+             "find_package(catkin REQUIRED COMPONENTS roscpp std_msgs nav_msgs)"),
+            ("find_package(catkin REQUIRED)", "find_package(catkin REQUIRED COMPONENTS nav_msgs roscpp)"),
+            ("find_package(catkin REQUIRED COMPONENTS\n\troscpp # the client\n)",
+             "find_package(catkin REQUIRED COMPONENTS\n\troscpp # the client\n\tnav_msgs\n)"),
+            ("find_package(catkin REQUIRED COMPONENTS\n  roscpp std_msgs)",
+             "find_package(catkin REQUIRED COMPONENTS\n  roscpp std_msgs nav_msgs)")):
+        text, _ = integrate.catkin_cmake_lists(cmake.replace("find_package(catkin REQUIRED COMPONENTS\n  roscpp\n"
+                                                             "  std_msgs\n)", call), model)
+        assert grown in text, text
+        assert integrate.catkin_cmake_lists(text, model)[0] == text
+
+
+def test_a_python_node_in_a_catkin_package_of_scripts_gets_catkin_python_setup_in_a_block(tmp_path):
+    package = existing_packages.catkin(tmp_path / "pkg")
+    cmake = (package / "CMakeLists.txt").read_text()
+    text, explained = integrate.catkin_cmake_lists(cmake, catkin_model("python"))
+    setup = text.index("# BEGIN rna-template: the nodes' Python package (setup.py)\ncatkin_python_setup()\n"
+                       "# END rna-template: the nodes' Python package\n")
+    assert text.index("find_package(catkin") < setup < text.index("catkin_package(")
+    assert "CMakeLists.txt: catkin_python_setup() installs the Python package of setup.py" in explained
+    assert integrate.catkin_cmake_lists(text, catkin_model("python"))[0] == text
+    with_setup = cmake.replace("catkin_package(", "catkin_python_setup()\n\ncatkin_package(")
+    assert "BEGIN rna-template: the nodes' Python" not in integrate.catkin_cmake_lists(with_setup,
+                                                                                      catkin_model("python"))[0]
+    with pytest.raises(ValueError, match="does not install the Python package hand_rover"):
+        integrate.catkin_setup_py("setup(packages=['other'], package_dir={'': 'src'})\n", catkin_model("python"))
 
 
 def test_a_node_never_lands_on_an_existing_file(template_dir, tmp_path):
@@ -116,12 +151,14 @@ def test_a_node_never_lands_on_an_existing_file(template_dir, tmp_path):
 
 def test_a_build_file_without_its_anchor_is_reported(template_dir, tmp_path):
     package = existing_packages.catkin(tmp_path / "pkg")
+    cmake = package / "CMakeLists.txt"
+    cmake.write_text(cmake.read_text().replace("find_package(catkin", "find_package(Boost"))
     result = subprocess.run([COPIER, "copy", "--trust", "--defaults", "--vcs-ref=HEAD", "--data=node_language=python",
                              "--data=node_name=watcher", str(template_dir), str(package)],
                             capture_output=True, text=True, stdin=subprocess.DEVNULL, timeout=120)
     assert result.returncode != 0
     assert "could not add the watcher node to CMakeLists.txt" in result.stderr
-    assert "catkin_python_setup" in result.stderr
+    assert "find_package(catkin REQUIRED COMPONENTS ...)" in result.stderr
 
 
 def test_a_destination_without_a_package_gets_a_package(template_dir, tmp_path):

@@ -133,7 +133,6 @@ BROKEN = [
     (answers(nodes=[{"name": "n" * 40}]), "nodes", "at most 39"),
     (answers(package_name="p" * 39, build_type="ament_cmake", nodes=[{"name": "n" * 35, "language": "cpp"}]),
      "nodes", "74 characters together: a C++ node's have at most 73"),
-    (node(description='Says """hello"""'), "nodes", "docstring"),
     (node(description="bell\a"), "nodes", "printable"),
     (node(parameters=["use_sim_time=true"]), "nodes", "declared by ROS 2 itself"),
     (node(parameters=["start_type_description_service=true"]), "nodes", "declared by ROS 2 itself"),

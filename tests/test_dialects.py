@@ -297,3 +297,13 @@ def _depth_char_by_char(text: str, depth: int = 0) -> int:
 @given(text=st.text(alphabet="()[]'\"#/\\ a", max_size=40), depth=st.integers(-2, 3))
 def test_the_bracket_depth_skips_strings_escapes_and_comments_as_a_reader_does(text, depth):
     assert lines._depth(text, depth) == _depth_char_by_char(text, depth)
+
+
+def test_an_override_past_100_columns_goes_on_a_line_of_its_own_as_uncrustify_puts_it():
+    from rna.dialects.cpp import CppDialect
+
+    short = "    std::shared_ptr<Trigger::Response> response)"
+    assert CppDialect.overriding(short) == short + " override"
+    long = "    std::shared_ptr<" + "A" * 52 + "::Response> response)"
+    assert CppDialect.overriding(long) == long + "\n  override"
+    assert CppDialect.overriding("x" * 91) == "x" * 91 + " override"  # exactly 100 columns

@@ -60,6 +60,13 @@ def copier_cli_in_process(capsys, template: Path, destination: Path, *args: str)
         (["--data", "launch_format=json"], "invalid answer to 'launch_format': 'json' is not one of xml, python, yaml"),
         (["--data", "build_type=ament_python", "--data", "interfaces_location=package"],
          "invalid answer to 'interfaces_location': an ament_python package cannot build interfaces"),
+        # Choices that depend on answers not given: the defaults (issue 25).
+        (["--data", "build_type=catkin"], "invalid answer to 'build_type': 'catkin' is not one of ament_cmake, "
+                                          "ament_python for ROS 2"),
+        (["--data", "interfaces_location=package"],
+         "invalid answer to 'interfaces_location': an ament_python package cannot build interfaces"),
+        (["--data", "ros_distro=kilted", "--data", "launch_format=toml"],
+         "invalid answer to 'launch_format': 'toml' is not one of xml, python, yaml"),
         (["--data", "nodes=- name: [unclosed"], "invalid answer to 'nodes': not valid YAML"),
         (["--data", "nodes=[{name: t, publishers: ['v:geometry_msgs/msg/Twst']}]"],
          "did you mean geometry_msgs/msg/Twist?"),
@@ -74,6 +81,16 @@ def test_bad_answers_give_one_line_and_write_nothing(template_folder, tmp_path, 
     errors = [line for line in stderr.splitlines() if "invalid answer" in line]
     assert len(errors) == 1 and message in errors[0], stderr
     assert not destination.exists()
+
+
+def test_a_data_file_choice_that_the_other_answers_rule_out_gives_one_line(template_folder, tmp_path, capsys):
+    data = tmp_path / "answers.yml"
+    data.write_text("ros_distro: noetic\nbuild_type: ament_cmake\n")
+    destination = tmp_path / "out"
+    code, stderr = copier_cli_in_process(capsys, template_folder, destination, "--data-file", str(data))
+    assert code == 1 and "Traceback" not in stderr and not destination.exists(), stderr
+    assert stderr.strip().splitlines()[-1] == ("rna-template: invalid answer to 'build_type': 'ament_cmake' is not "
+                                               "one of catkin for ROS 1"), stderr
 
 
 def test_bad_answers_leave_an_existing_folder_untouched(template_folder, tmp_path):

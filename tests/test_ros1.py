@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
-from support import existing_packages, interrupts
+from support import existing_packages, interrupts, real_packages
 from support import ros1 as ros1_support
 from support.drawn import Linter, check_drawn, code_linters, thorough, whole
 from support.generation import VARIANTS, add_node, copy_template, example, generate
@@ -114,6 +114,11 @@ def catkin_ws(ros1, template_dir, tmp_path_factory) -> CatkinWorkspace:
     # A C++ node added to a catkin package written by hand.
     add_node(template_dir, existing_packages.catkin(path / "src" / "hand_rover"),
              {"node_name": "listener", "node_subscribers": "chatter:std_msgs/msg/String"})
+    # Packages shaped like real ones (rospy scripts without setup.py; roscpp as catkin_create_pkg
+    # makes it): a node added to each, then grown by copier update.
+    for name in REAL_PACKAGES:
+        _, grown = real_packages.grown(template_dir, path / "src" / name, name)
+        assert grown.returncode == 0, grown
     config = path / "src" / "bringup" / "bringup" / "config" / "talker.yaml"
     config.write_text(config.read_text().replace("rate: 1.5", "rate: 2.5"))  # tuned by a user
     workspace = CatkinWorkspace(path, ros1, tmp_path_factory.mktemp("ros1_logs"))
@@ -187,6 +192,23 @@ def test_node_added_to_a_hand_written_package_runs(catkin_ws):
             listener.wait_for(r'I heard: "Hello by hand"', timeout=30)
             for process in (listener, talker):
                 assert_clean_exit(process, process.interrupt())
+
+
+REAL_PACKAGES = {"rospy_tools": ("talker.py", "chatter_monitor.py"), "roscpp_bringup": ("talker", "chatter_monitor")}
+
+
+@pytest.mark.parametrize("package", REAL_PACKAGES)
+def test_a_node_added_to_a_real_package_and_grown_runs_with_rosrun(catkin_ws, package):
+    """The node hears the package's own talker; started as users start nodes, with rosrun."""
+    talker, node = REAL_PACKAGES[package]
+    logs = catkin_ws.logs / package
+    with catkin_ws.network(package) as (prefix, env):
+        talking = NodeProcess([*prefix, "rosrun", package, talker], env=env, log_path=logs / "talker.log")
+        monitor = NodeProcess([*prefix, "rosrun", package, node], env=env, log_path=logs / "monitor.log")
+        with started(talking, monitor):
+            monitor.wait_for(f'I heard: "hello from {package}"', timeout=30)
+            assert_clean_exit(monitor, monitor.interrupt())
+            talking.interrupt()
 
 
 def test_parameters_come_from_the_command_line(catkin_ws):

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
-from support import existing_packages, interrupts
+from support import existing_packages, interrupts, real_packages
 from support import ros2 as ros2_support
 from support import drawn as drawing
 from support.drawn import Drawn, check_drawn, code_linters, thorough
@@ -117,6 +117,11 @@ def build_workspace(ros2: ros2_support.Ros2Environment, template_dir: Path, path
                  {"node_name": "listener", "node_subscribers": "chatter:std_msgs/msg/String"})
         add_node(template_dir, existing_packages.ament_cmake(path / "src" / "hand_driver"),
                  {"node_name": "echo", "node_language": "python", "node_subscribers": "chatter:std_msgs/msg/String"})
+        # Packages shaped like real ones (an ament_python package of entry points, a description
+        # package of meshes): a node added to each, then grown by copier update.
+        for name in REAL_PACKAGES:
+            _, grown = real_packages.grown(template_dir, path / "src" / name, name)
+            assert grown.returncode == 0, grown
     # A user tunes a parameter in the generated config file.
     config = path / "src" / "robot_services" / "robot_services" / "config" / "server.yaml"
     config.write_text(config.read_text().replace("rate: 1.5", "rate: 2.5"))
@@ -385,6 +390,24 @@ def test_custom_message_service_and_action_between_nodes(workspace, package, int
         detector.wait_for("Feedback on the approach goal")
         detector.wait_for("The approach goal succeeded")
         stop_all(detector, mover)
+
+
+REAL_PACKAGES = ("demo_tools", "rover_description")  # the ROS 2 C++ one needs rclcpp: reviewed, not built here
+
+
+def test_a_node_added_to_a_real_package_of_entry_points_and_grown_hears_its_talker(workspace):
+    with started(workspace.node("demo_tools", "talker"), workspace.node("demo_tools", "chatter_monitor")) as (
+            talker, monitor):
+        monitor.wait_for(r'I heard: "Hello from demo_tools: \d+"')
+        stop_all(monitor, talker)
+
+
+def test_a_node_added_to_a_description_package_and_grown_publishes_with_its_parameters(workspace):
+    with started(workspace.node("rover_description", "wheel_odometry")) as (odometry,):
+        assert workspace.probe("hears", "/odom", "nav_msgs/msg/Odometry").strip() == "heard"
+        values = json.loads(workspace.probe("params", "wheel_odometry", "wheel_radius", "wheel_separation"))
+        assert values == {"wheel_radius": 0.08, "wheel_separation": 0.4}
+        stop_all(odometry)
 
 
 def test_nodes_added_to_hand_written_packages_run(workspace):

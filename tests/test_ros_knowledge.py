@@ -79,9 +79,17 @@ def test_node_names_breaking_a_rule(name, rule):
     assert rule in names.node_name_error(name)
 
 
-@pytest.mark.parametrize("topic", ["chatter", "/cmd_vel", "~/status", "camera/depth/points", "/a_1/B2"])
+@pytest.mark.parametrize("topic", ["chatter", "/cmd_vel", "~/status", "camera/depth/points", "/a_1/B2",
+                                   "{node}/status", "~/{node}_raw", "/cam_{node}/image", "{node}"])
 def test_valid_topic_names(topic):
     assert names.topic_name_error(topic) is None
+
+
+def test_ros_2_resolves_the_node_substitution_where_the_code_and_the_tests_name_it():
+    assert names.fully_qualified("{node}/status", "driver") == "/driver/status"
+    assert names.fully_qualified("~/{node}_raw", "driver", "/robot") == "/robot/driver/driver_raw"
+    assert names.graph_name("{node}/status", "driver") == "driver/status"
+    assert names.identifier_from_name("cam_{node}/image") == "cam_node_image"
 
 
 @pytest.mark.parametrize(
@@ -94,12 +102,21 @@ def test_valid_topic_names(topic):
         ("a//b", "'//'"),
         ("~scan", "'~' must be followed by '/'"),
         ("a/~/b", "letters, digits and '_'"),
-        ("{node}/status", "substitutions"),
+        ("{ns}/status", "{ns} is the node's namespace, '/' for a node started in none (as the launch file starts "
+                        "it), and ROS refuses the name it then makes; 'status' is resolved"),
+        ("/{namespace}/{node}", "'{node}' is resolved in the node's namespace"),
+        ("{name}/x", "{name} is no substitution ROS 2 resolves here; {node}, the node's name, is"),
+        ("a{node", "does not enclose a substitution"),
+        ("{no/de}/x", "does not enclose a substitution"),
         ("/", "give a name after its prefix"),
     ],
 )
 def test_topic_names_breaking_a_rule(topic, rule):
     assert rule in names.topic_name_error(topic)
+
+
+def test_ros_1_names_have_no_substitution():
+    assert "substitutions like {node} are ROS 2's; a ROS 1 name has none" in names.topic_name_error("{node}/x", ros=1)
 
 
 @pytest.mark.parametrize(

@@ -13,6 +13,7 @@ from __future__ import annotations
 import os
 import re
 import shutil
+import subprocess
 import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
@@ -23,7 +24,8 @@ from catkin_pkg.package import parse_package
 
 if "support.template_repo" not in sys.modules:  # its asserts explain themselves too
     pytest.register_assert_rewrite("support.template_repo")
-from support.packages import dependency_names  # noqa: E402
+from support.generation import subprocess_env  # noqa: E402
+from support.packages import dependency_names, rna  # noqa: E402
 from support.template_repo import (  # noqa: E402
     FLAVORS, NEW_VERSION, OLD_VERSION, PACKAGE, RELEASES, Flavor, answers_of, append_after, commit_all,
     conflict_excerpts, conflicted_files, find_node, generate_project, git, kept_of, managed_lines, missing_block,
@@ -211,6 +213,58 @@ def test_an_update_ends_with_a_summary_instead_of_internal_command_lines(project
     assert all("['" not in line and "after_update.py" in line for line in task_lines), result
 
 
+def test_the_last_line_says_done_or_done_with_items_and_the_exit_status_follows(project):
+    flavor = Flavor("ament_python")
+    destination = project("ament_python")
+    edit_user_file(destination, flavor, "logger")
+    commit_all(destination)
+    nodes = [node for node in flavor.answers["nodes"] if node["name"] != "logger"]
+    result = run_update(destination, {"nodes": nodes})
+    assert result.returncode == 1, result
+    last = result.stdout[result.stdout.rindex("Done, with"):].splitlines()
+    assert " ".join(last) == ("Done, with 1 item for you (above): review with `git diff HEAD`, and commit once it is "
+                              "done. copier exits with status 1 to say so; its line \"Task ... returned non-zero "
+                              "exit status 1\" below means that, not a failure."), result
+    assert all(len(line) <= 80 for line in last), last
+    assert "returned non-zero exit status 1." in result.stderr.rstrip().splitlines()[-1], result
+    assert git("status", "--porcelain", cwd=destination).stdout, "the update is done: the package changed"
+
+
+BROKEN_STEP = """
+import sys
+sys.path.insert(0, sys.argv[1])
+import after_update
+
+
+def broken(*args, **kwargs):
+    raise RuntimeError("a step broke")
+
+
+after_update.blocks.dropped_but_used = broken
+sys.exit(after_update.main(".copier-answers.yml", after_update.Path(sys.argv[2]), after_update.Path(sys.argv[3])))
+"""
+
+
+def test_an_after_update_step_that_fails_undoes_the_update_and_says_so(project, current_template):
+    """Whatever breaks in the step after Copier's merge, the package comes back as committed (Copier
+    updates a clean one only), and one line says so: a failed update never leaves it half done.
+    (The step runs in a process of its own, as Copier runs it, with one of its steps broken.)"""
+    destination = project("ament_cmake")
+    (destination / "README.md").write_text("what Copier had written\n")  # Copier's part of the update
+    (destination / "robot" / "src" / "planner.cpp").write_text("// a node Copier added\n")
+    result = subprocess.run([sys.executable, "-c", BROKEN_STEP, str(current_template.path / "extensions"),
+                             str(destination), str(current_template.path)], cwd=destination, env=subprocess_env(),
+                            capture_output=True, text=True, timeout=300)
+    assert result.returncode == 1, result.stdout + result.stderr
+    error = result.stderr.strip()
+    assert error.startswith("rna-template: the update failed while finishing (RuntimeError: a step broke, at "
+                            "<string>:"), error
+    assert error.endswith("so it was undone: the package is as you committed it. Please report this, with the "
+                          "command you ran."), error
+    assert "\n" not in error
+    assert git("status", "--porcelain", cwd=destination).stdout == ""
+
+
 # ─── Answers stored resolved ──────────────────────────────────────────────────
 # A node's language defaults from the build type; the answers file records it, so that
 # changing the build type (or the distro) never turns a Python node into a C++ one.
@@ -317,6 +371,87 @@ def test_a_language_changed_on_purpose_keeps_the_edited_file(project):
     assert missing_block(destination / flavor.user_file("monitor", "python"), kept) is None
     assert "cpp now" in kept_of(result.output)[flavor.user_file("monitor", "python")]
     assert (destination / flavor.user_file("monitor", "cpp")).is_file()
+
+
+def test_the_one_node_questions_are_the_first_copys_and_an_update_given_one_refuses_it(release_template, tmp_path):
+    """`node_publishers` and the other one-node questions fill in `nodes` on a first copy. The
+    answers file records `nodes` alone (0.3.1 recorded both, and an update given one changed
+    nothing while recording it); an update given one says, in one line, that nodes change in
+    `nodes`, and writes nothing."""
+    answers = {"package_name": PACKAGE, "node_setup": "one", "node_name": "driver",
+               "node_publishers": "cmd_vel:geometry_msgs/msg/Twist"}
+    fresh = answers_of(generate_project(release_template, tmp_path / "fresh", answers, vcs_ref=NEW_VERSION))
+    assert not set(rna.answers.FIRST_COPY) & set(fresh), fresh
+    old = generate_project(release_template, tmp_path / "old", answers, vcs_ref=RELEASES[-1])
+    assert "node_publishers" in answers_of(old)
+    assert_clean_update(run_update(old, vcs_ref=NEW_VERSION), old)
+    recorded = answers_of(old)
+    assert not set(rna.answers.FIRST_COPY) & set(recorded), recorded
+    assert recorded["nodes"] == fresh["nodes"] == [
+        {"language": "python", "name": "driver", "publishers": ["cmd_vel:geometry_msgs/msg/Twist"]}]
+    commit_all(old, "updated")
+
+    refused = run_update(old, {"node_publishers": "odom:nav_msgs/msg/Odometry"})
+    assert refused.returncode == 1, refused
+    assert ("rna-template: invalid answer to 'node_publishers': node_publishers is a question of the first copy, "
+            "which it helps fill in 'nodes'; this package records its nodes in 'nodes'") in refused.stderr, refused
+    assert "Traceback" not in refused.stderr and git("status", "--porcelain", cwd=old).stdout == "", refused
+
+
+INVALID_CHOICES = {  # id -> (flavour, what the update is given, the error)
+    "ament_python-catkin": (
+        "ament_python", {"build_type": "catkin"},
+        "invalid answer to 'build_type': 'catkin' is not one of ament_cmake, ament_python for ROS 2"),
+    "ament_python-interfaces-in-the-package": (
+        "ament_python", {"interfaces_location": "package"},
+        "invalid answer to 'interfaces_location': an ament_python package cannot build interfaces"),
+    "catkin-ament_cmake": ("catkin", {"build_type": "ament_cmake"},
+                           "invalid answer to 'build_type': 'ament_cmake' is not one of catkin for ROS 1"),
+}
+
+
+@pytest.mark.parametrize("case", INVALID_CHOICES)
+def test_a_choice_the_packages_answers_rule_out_gives_one_line_and_writes_nothing(project, case):
+    """Copier checks a choice given with --data-file against the choices the other answers
+    leave (the package's, from its answers file) and ends in a traceback; the template says
+    which rule in one line first."""
+    flavor_name, data, message = INVALID_CHOICES[case]
+    destination = project(flavor_name)
+    result = run_update(destination, data)
+    assert result.returncode == 1, result
+    assert f"rna-template: {message}" in result.stderr and "Traceback" not in result.stderr, result
+    assert git("status", "--porcelain", cwd=destination).stdout == "", result
+
+
+@pytest.mark.parametrize("command", ["recopy", "copy"])
+def test_recopy_over_a_lived_in_package_is_refused_in_one_line(project, current_template, command):
+    """Copier suggests `copier recopy` when an update goes wrong; it renders the package afresh
+    over the user's files (with --overwrite, without asking), so the user's lines in
+    package.xml, the build files, config and README would go, with exit 0. Refused instead."""
+    flavor = Flavor("ament_python")
+    destination = project("ament_python")
+    lived_in_edits(destination, flavor)
+    where = [] if command == "recopy" else [str(current_template.path), "."]
+    result = subprocess.run([sys.executable, "-m", "copier", command, "--trust", "--defaults", "--overwrite", *where],
+                            cwd=destination, env=subprocess_env(), capture_output=True, text=True,
+                            stdin=subprocess.DEVNULL, timeout=300)
+    assert result.returncode == 1, result.stdout + result.stderr
+    assert ("rna-template: this folder holds a package the template made (.copier-answers.yml): copier recopy and "
+            "copier copy render it afresh") in result.stderr and "Traceback" not in result.stderr, result.stderr
+    assert git("status", "--porcelain", cwd=destination).stdout == ""
+
+
+def test_a_file_name_that_is_not_utf_8_stops_the_update_before_copier_fails_half_way(project):
+    """Copier 9.19 reads the names in git's diff as UTF-8 and fails after it has written the new
+    version; the template refuses first, naming the file."""
+    destination = project("ament_python")
+    (destination / "robot" / os.fsdecode(b"caf\xe9 notes.txt")).write_bytes(b"\xe9t\xe9\n")
+    commit_all(destination, "a note from an old machine")
+    result = run_update(destination, {"nodes": Flavor("ament_python").answers["nodes"][:2]})
+    assert result.returncode == 1, result
+    assert ("rna-template: the file robot/caf\\xe9 notes.txt has a name that is not UTF-8, on which copier update "
+            "fails half-way (nothing was written)") in result.stderr and "Traceback" not in result.stderr, result
+    assert git("status", "--porcelain", cwd=destination).stdout == ""
 
 
 # ─── Adding endpoints to existing nodes ───────────────────────────────────────

@@ -401,3 +401,46 @@ def test_a_kept_render_is_taken_only_for_exactly_the_answers_it_was_rendered_fro
     assert kept.pointed(clone) is None
     kept.point(clone, str(folder))
     assert kept.pointed(clone) == str(folder)
+
+
+# Values of every parameter type, written as the template writes them (rna.configs.yaml_entry).
+PARAMETER_VALUES = st.one_of(
+    st.booleans(), st.integers(-(2**63), 2**63 - 1), st.floats(allow_nan=False), st.text(max_size=30),
+    st.lists(st.floats(allow_nan=False), max_size=30), st.lists(st.text(max_size=8), max_size=6),
+    st.lists(st.integers(-5, 5), max_size=40), st.lists(st.booleans(), max_size=3))
+COMMENTS = st.text(st.characters(exclude_categories=("Cc", "Cs", "Zl", "Zp")), max_size=20).map(
+    lambda text: "# " + text.strip())
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.dictionaries(st.from_regex(r"[a-z][a-z0-9_]{0,12}", fullmatch=True), st.tuples(PARAMETER_VALUES,
+                                                                                         PARAMETER_VALUES),
+                       min_size=1, max_size=4),
+       st.data(), st.booleans())
+def test_a_comment_on_a_line_survives_any_change_of_its_default(parameters, data, ros2):
+    """The user comments lines they did not tune (`frame_id: base_link  # must match the URDF`);
+    whatever the defaults become, each comment stays on its parameter's line."""
+    from rna.configs import yaml_entry
+
+    indent = "    " if ros2 else ""
+    head = "/**:\n  ros__parameters:\n" if ros2 else "# Parameters.\n"
+
+    def config(values: dict) -> str:
+        return head + "\n\n".join(yaml_entry(indent, name, value) for name, value in values.items()) + "\n"
+
+    old, new = ({name: pair[index] for name, pair in parameters.items()} for index in (0, 1))
+    commented = data.draw(st.dictionaries(st.sampled_from(sorted(parameters)), COMMENTS, min_size=1))
+    lines = config(old).split("\n")
+    for name, comment in commented.items():
+        key = next(index for index, line in enumerate(lines) if line.startswith(f"{indent}{name}:"))
+        end = key + 1
+        while end < len(lines) and lines[end].startswith(indent + "  "):  # a list over several lines
+            end += 1
+        lines[end - 1] += f"  {comment}"
+    mine = "\n".join(lines)
+    assert config_merge.parameters(mine) == old  # a comment is no value
+    merged = config_merge.merge(config(old), mine, config(new))
+    assert merged is not None and not merged.conflicts
+    assert config_merge.parameters(merged.text) == new
+    for name, comment in commented.items():
+        assert f"  {comment}" in merged.text, (name, comment, merged.text)

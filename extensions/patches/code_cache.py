@@ -136,7 +136,7 @@ class Store:
 
     def _read(self) -> dict:
         try:
-            data = marshal.loads(self.path.read_bytes())
+            data = marshal.loads(self.path.read_bytes())  # not through rna/files.py: the template's cache
         except (OSError, EOFError, ValueError, TypeError):
             return {}
         if not (isinstance(data, tuple) and len(data) == 2 and data[0] == _FORMAT and isinstance(data[1], dict)):

@@ -562,9 +562,10 @@ class Dialog:
     def _entry_error(self, node: Mapping, kind: Kind, index: int, mapping: Mapping) -> str | None:
         return self.rules.node_error(self._with_entry(node, kind, index, entry_value(kind.key, mapping)))
 
-    def _graph_type(self, kind: Kind, name: str) -> str | None:
-        """The type the package's nodes already use for a topic, service or action of this name."""
-        met = names.graph_name(name)
+    def _graph_type(self, kind: Kind, name: str, node: str) -> str | None:
+        """The type the package's nodes already use for a topic, service or action of this name
+        (of node `node`: its {node} is its own name)."""
+        met = names.graph_name(name, node)
         if met is None or not kind.interface:
             return None
         for other in self.nodes:
@@ -573,7 +574,8 @@ class Dialog:
                     continue
                 for entry in other.get(other_kind.key) or []:
                     mapping = entry_mapping(other_kind.key, entry)
-                    if names.graph_name(str(mapping.get("topic", mapping.get("name", "")))) == met:
+                    if names.graph_name(str(mapping.get("topic", mapping.get("name", ""))),
+                                        str(other.get("name"))) == met:
                         return str(mapping.get("type"))
         return None
 
@@ -606,7 +608,7 @@ class Dialog:
             if first:  # the entry's name alone: the rest is not given yet
                 what = {"msg": "topic", "srv": "service", "action": "action"}.get(kind.interface or "")
                 if what:
-                    return names.topic_name_error(answer.strip(), what)
+                    return names.topic_name_error(answer.strip(), what, self.rules.types.ros)
                 if kind.key == "timers":
                     return names.identifier_error(answer.strip(), "timer")
                 return names.parameter_name_error(answer.strip(), self.rules.types.ros)
@@ -617,7 +619,7 @@ class Dialog:
         default = "" if current is None else _yaml_text(current) if field.form == "yaml" else str(current)
         complete: list[str] = []
         if field.form == "type" and kind.interface:
-            used = self._graph_type(kind, str(mapping.get("topic", mapping.get("name", ""))))
+            used = self._graph_type(kind, str(mapping.get("topic", mapping.get("name", ""))), str(node.get("name")))
             default = default or used or ""
             complete = type_choices(kind.interface, self.rules.types.ros, self.rules.types.distro, self.found,
                                     self.own.get(kind.interface, ()), first=[used] if used else [])

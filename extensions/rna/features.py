@@ -74,8 +74,8 @@ ROS2_CPP = {
     "services": Needs(base=("<memory>",)),
     "actions": Needs(("rclcpp_action",), ("<memory>", "rclcpp_action/rclcpp_action.hpp")),
     # Each goal in a thread of its own (the base's start_goal_thread()).
-    "action_servers": Needs(base=("<atomic>", "<functional>", "<list>", "<memory>", "<mutex>", "<thread>",
-                                  "<utility>")),
+    "action_servers": Needs(base=("<chrono>", "<condition_variable>", "<functional>", "<list>", "<memory>",
+                                  "<mutex>", "<thread>", "<utility>")),
     "action_clients": Needs(base=("<atomic>",)),
     "parameter_descriptors": Needs(("rcl_interfaces",), ("rcl_interfaces/msg/parameter_descriptor.hpp",)),
     "string_parameters": Needs(base=("<string>",)),

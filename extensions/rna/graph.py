@@ -57,8 +57,8 @@ def mermaid_lines(nodes: Iterable) -> list[str]:
 
     def vertex(kind: str, name: str, type_) -> str:
         # One vertex per name the nodes meet on (`odom` and `/odom` alike), labelled as first written.
-        met = names.graph_name(name) or f"{node.name}/{name}"
-        key = labels.setdefault((kind, met), Vertex(kind, name, type_.full_name))
+        met = names.graph_name(name, node.name) or f"{node.name}/{name}"
+        key = labels.setdefault((kind, met), Vertex(kind, names.with_node(name, node.name), type_.full_name))
         return vertices.setdefault(key, f"{kind[0]}{len(vertices)}")
 
     for index, node in enumerate(nodes):

@@ -3,10 +3,13 @@
 Each function takes a build file's text and returns it with the node's lines in a
 block of their own (`BEGIN rna-template: node <name>` ... `END ...`), replacing that
 block when it is already there, so running it again after `copier update` only
-changes the node's lines. Text outside the block is left alone, except a catkin
-package's find_package(catkin REQUIRED COMPONENTS ...) list, which gains the
-components the node needs. Each returns `(new_text, [one line per change])`; a
-ValueError says what the file lacks, so the user can add the lines by hand.
+changes the node's lines. Text outside the blocks is left alone, except a catkin
+package's find_package(catkin REQUIRED COMPONENTS ...) call, which gains the components
+the node needs at its end, in the call's own layout. A catkin package without
+catkin_python_setup() (scripts only) gets it in a block of its own for a Python node,
+whose base class is a module of the package (setup.py, rendered by the template when
+the package has none). Each returns `(new_text, [one line per change])`; a ValueError
+says what the file lacks, so the user can add the lines by hand.
 """
 
 from __future__ import annotations
@@ -76,19 +79,46 @@ def ament_cmake_lists(text: str, package) -> tuple[str, list[str]]:
     return new, [f"CMakeLists.txt: builds and installs {node.executable} and config/{node.name}.yaml"]
 
 
+# The call itself, not one a comment quotes (catkin_create_pkg's comments do).
+CATKIN_FIND = re.compile(r"^[ \t]*find_package\(\s*catkin\s+REQUIRED\b(?P<rest>[^)]*)\)", re.M)
+PYTHON_SETUP_MARKERS = ("# BEGIN rna-template: the nodes' Python package (setup.py)",
+                        "# END rna-template: the nodes' Python package")
+
+
+def catkin_components(call: str) -> list[str]:
+    """The components a find_package(catkin REQUIRED [COMPONENTS ...]) call names."""
+    words = re.sub(r"#[^\n]*", "", CATKIN_FIND.match(call)["rest"]).split()
+    return words[1:] if words[:1] == ["COMPONENTS"] else words
+
+
+def with_components(call: str, missing: list[str]) -> str:
+    """The user's find_package(catkin ...) call with `missing` added before its `)`, in its own
+    style: on its line when it is one line (or when `)` ends a line of components), else one a
+    line, indented as the components above."""
+    body = call[:-1]
+    if not re.search(r"\bCOMPONENTS\b", re.sub(r"#[^\n]*", "", body)):
+        missing = ["COMPONENTS", *missing]
+    lines = body.split("\n")
+    if len(lines) == 1 or lines[-1].strip():
+        return body + " " + " ".join(missing) + ")"
+    above = [line for line in lines[1:-1] if line.strip() and not line.lstrip().startswith("#")]
+    indent = re.match(r"[ \t]*", above[-1])[0] if above else "  "
+    return "\n".join(lines[:-1]) + "\n" + "".join(f"{indent}{name}\n" for name in missing) + lines[-1] + ")"
+
+
 def catkin_cmake_lists(text: str, package) -> tuple[str, list[str]]:
-    """The components find_package(catkin) lacks, then the node's target and install lines."""
+    """The components find_package(catkin) lacks, appended to the user's call; a Python node's
+    catkin_python_setup() in a block of its own when the package has none; then the node's
+    target and install lines."""
     node = package.nodes[0]
     explained = []
-    find = re.search(r"find_package\(\s*catkin\s+REQUIRED(?:\s+COMPONENTS)?([^)]*)\)", text)
+    find = CATKIN_FIND.search(text)
     if not find:
         raise ValueError("it has no find_package(catkin REQUIRED COMPONENTS ...) call")
-    components = find[1].split()
+    components = catkin_components(find[0])
     missing = [dep.name for dep in package.dependencies if dep.name not in components]
     if missing:
-        call = "find_package(catkin REQUIRED COMPONENTS\n" + "".join(
-            f"  {name}\n" for name in sorted(components + missing)) + ")"
-        text = text[:find.start()] + call + text[find.end():]
+        text = text[:find.start()] + with_components(find[0], missing) + text[find.end():]
         explained.append(f"CMakeLists.txt: find_package(catkin) also finds {', '.join(missing)}")
     if node.is_cpp:
         target = f"${{PROJECT_NAME}}_{node.name}"
@@ -99,14 +129,25 @@ def catkin_cmake_lists(text: str, package) -> tuple[str, list[str]]:
                  f"target_link_libraries({target} ${{catkin_LIBRARIES}})",
                  f"install(TARGETS {target} RUNTIME DESTINATION ${{CATKIN_PACKAGE_BIN_DESTINATION}})"]
     else:
-        if not re.search(r"^\s*catkin_python_setup\(\)", text, re.M):
-            raise ValueError("a Python node's base class is a module of the package: give the package a "
-                             "setup.py and call catkin_python_setup() first")
+        # The node's base class is a module of the package's Python package (src/<package>/),
+        # which setup.py installs; catkin_python_setup() must come before catkin_package().
+        if not re.search(r"^\s*catkin_python_setup\(\s*\)", text, re.M):
+            text = _put_block(text, PYTHON_SETUP_MARKERS, ["catkin_python_setup()"],
+                              re.compile(re.escape(CATKIN_FIND.search(text)[0]) + r"[^\n]*\n\n?"))
+            explained.append("CMakeLists.txt: catkin_python_setup() installs the Python package of setup.py")
         block = [f"catkin_install_python(PROGRAMS scripts/{node.executable}",
                  "  DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})"]
     block.append(f"install(FILES config/{node.name}.yaml DESTINATION ${{CATKIN_PACKAGE_SHARE_DESTINATION}}/config)")
     new = _put_block(text, _markers("#", "", node), block, re.compile(r"^catkin_package\([^)]*\)\n\n?", re.M))
     return new, [*explained, f"CMakeLists.txt: builds and installs {node.executable} and config/{node.name}.yaml"]
+
+
+def catkin_setup_py(text: str, package) -> tuple[str, list[str]]:
+    """A catkin package's setup.py must install the Python package the node's base class is in."""
+    if not re.search(rf"""['"]{re.escape(package.name)}['"]""", text) or "src" not in text:
+        raise ValueError(f"its setup.py does not install the Python package {package.name} from src/, where the "
+                         f"node's base class is: add packages=['{package.name}'], package_dir={{'': 'src'}}")
+    return text, []
 
 
 def setup_py(text: str, package) -> tuple[str, list[str]]:

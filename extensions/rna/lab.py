@@ -63,7 +63,7 @@ def _check(lab: Mapping) -> None:
 def load(path: Path = FILE) -> dict:
     """The lab's choices, checked; {} when the file holds comments only (upstream's)."""
     try:
-        lab = yaml.safe_load(path.read_text()) if path.is_file() else None
+        lab = yaml.safe_load(path.read_text()) if path.is_file() else None  # not through rna/files.py: the template's
     except yaml.YAMLError as error:
         raise LabError(f"{path.name}: not valid YAML ({str(error).splitlines()[0]})") from None
     lab = lab or {}

@@ -47,7 +47,8 @@ class License:
 
     def text(self, copyright_line: str) -> str:
         """The LICENSE file."""
-        return (_TEXTS / f"{self.spdx}.txt").read_text().replace("{copyright}", copyright_line)
+        text = (_TEXTS / f"{self.spdx}.txt").read_text()  # not through rna/files.py: the template's license texts
+        return text.replace("{copyright}", copyright_line)
 
     def header(self, copyright_line: str, comment: str) -> str:
         """The comment block that starts every source file (`comment` is '#' or '//')."""

@@ -60,6 +60,13 @@ class Topic:
     def label(self) -> str:
         return f"{self.role} '{self.topic}'"
 
+    @property
+    def starter_log_throttle(self) -> float | None:
+        """Seconds between the starter callback's logs of a subscription to a sensor stream
+        (sensor_data QoS: a camera, a lidar, tens of messages a second), else None: one log a
+        message."""
+        return 1.0 if self.role == "subscriber" and self.qos.preset == "sensor_data" else None
+
 
 @dataclass(frozen=True)
 class Service:
@@ -284,8 +291,10 @@ class Node:
     @property
     def starter_log_throttle(self) -> float | None:
         """Seconds between the starter code's "Publishing" logs when its timer fires faster than
-        twice a second (a control loop logs once a second, not on every tick), else None."""
-        return 1.0 if self.driver_timer and self.driver_timer.period < 0.5 else None
+        twice a second (a control loop logs once a second, not on every tick) or it relays a
+        sensor stream, else None."""
+        fast_timer = self.driver_timer and self.driver_timer.period < 0.5
+        return 1.0 if fast_timer or (self.relay and self.relay.starter_log_throttle) else None
 
     @property
     def relay(self) -> Topic | None:

@@ -138,19 +138,47 @@ def node_name_error(name: object) -> str | None:
     return keyword_error(name)
 
 
-def topic_name_error(name: object, what: str = "topic") -> str | None:
-    """ROS 2 topic and service name rules (which ROS 1 names also satisfy).
+# A substitution in a ROS 2 name (rcl_expand_topic_name): {node} is the node's name.
+SUBSTITUTION = re.compile(r"\{([^{}/]*)\}")
+NAMESPACE_SUBSTITUTIONS = ("ns", "namespace")
 
-    Substitutions such as {node} are refused because generated identifiers are
-    derived from the name.
+
+def substitution_error(name: str, what: str, ros: int) -> str | None:
+    """Why the substitutions of a name are not ones its node resolves, or None.
+
+    ROS 2 resolves {node} in any part of a name. {ns} and {namespace} stand for the node's
+    namespace, which is '/' for a node started in none (as the launch file starts them):
+    ROS then refuses the name they make ('//chatter'), and a relative name resolves in
+    the node's namespace all the same. ROS 1 names have no substitutions.
     """
+    if ros == 1:
+        return f"{what} '{name}': substitutions like {{node}} are ROS 2's; a ROS 1 name has none (use '~/...')"
+    for match in SUBSTITUTION.finditer(name):
+        if match[1] in NAMESPACE_SUBSTITUTIONS:
+            relative = SUBSTITUTION.sub(lambda m: m[0] if m[1] == "node" else "", name).lstrip("/") or "x"
+            return (f"{what} '{name}': {{{match[1]}}} is the node's namespace, '/' for a node started in none (as "
+                    f"the launch file starts it), and ROS refuses the name it then makes; '{relative}' is resolved "
+                    "in the node's namespace all the same")
+        if match[1] != "node":
+            return (f"{what} '{name}': {{{match[1]}}} is no substitution ROS 2 resolves here; {{node}}, the node's "
+                    "name, is")
+    if "{" in SUBSTITUTION.sub("", name) or "}" in SUBSTITUTION.sub("", name):
+        return f"{what} '{name}': a '{{' or '}}' that does not enclose a substitution such as {{node}}"
+    return None
+
+
+def topic_name_error(name: object, what: str = "topic", ros: int = 2) -> str | None:
+    """ROS topic, service and action name rules: ROS 2's, which ROS 1 names also satisfy but
+    for the substitution {node}, ROS 2's alone."""
     if not isinstance(name, str) or not name:
         return f"give a {what} name"
     if too_long(name, ROS_NAME_MAX):
         return too_long(name, ROS_NAME_MAX, f"{what} ")
     if "{" in name or "}" in name:
-        return f"{what} '{name}': write it without substitutions like {{node}}, which are not supported here"
-    rest = name
+        error = substitution_error(name, what, ros)
+        if error:
+            return error
+    rest = SUBSTITUTION.sub("x", name)  # a part that starts with {node} starts with a letter
     if rest.startswith("~"):
         rest = rest[1:]
         if rest and not rest.startswith("/"):
@@ -269,9 +297,9 @@ def type_aliases(interfaces, taken) -> dict:
 def identifier_from_name(name: str) -> str:
     """The code name derived from a topic, service or action name.
 
-    '/camera/depth/points' -> 'camera_depth_points', '~/cmdVel' -> 'cmd_vel'.
+    '/camera/depth/points' -> 'camera_depth_points', '~/cmdVel' -> 'cmd_vel', '{node}/state' -> 'node_state'.
     """
-    tokens = [token for token in name.lstrip("~").split("/") if token]
+    tokens = [SUBSTITUTION.sub(r"\1", token) for token in name.lstrip("~").split("/") if token]
     return "_".join(camel_to_snake(token) for token in tokens).strip("_")
 
 
@@ -322,15 +350,22 @@ def package_name_from_folder(folder: str) -> str:
     return name if package_name_error(name) is None else "my_package"
 
 
-def graph_name(name: str) -> str | None:
+def with_node(name: str, node: str) -> str:
+    """The name with ROS 2's {node} substitution resolved: '{node}/state' -> 'driver/state'."""
+    return name.replace("{node}", node)
+
+
+def graph_name(name: str, node: str) -> str | None:
     """The name endpoints meet on when every node runs in one namespace (a launch file's),
     leading slash or not; None for a private (~) name, which meets no other node's."""
-    return None if name.startswith("~") else name.lstrip("/")
+    return None if name.startswith("~") else with_node(name, node).lstrip("/")
 
 
 def fully_qualified(name: str, node: str, namespace: str = "/") -> str:
     """The name ROS resolves a topic, service or action name to for a node in `namespace`,
-    as graph queries list it: 'chatter' -> '/chatter', '~/state' -> '/<node>/state'."""
+    as graph queries list it: 'chatter' -> '/chatter', '~/state' -> '/<node>/state',
+    '{node}/state' -> '/<node>/state'."""
+    name = with_node(name, node)
     base = namespace.rstrip("/")
     if name.startswith("~"):
         return f"{base}/{node}{name[1:]}"

@@ -16,7 +16,9 @@ from .licenses import LICENSES
 from .parameters import SCALAR_TYPES, TYPE_ALIASES
 
 _KEYWORDS = sorted({*python_names.KEYWORDS, *python_names.SOFT_KEYWORDS, *names.CPP_KEYWORDS})
-_ROS_NAME = r"^(~/|/)?[A-Za-z_][A-Za-z0-9_]*(/[A-Za-z_][A-Za-z0-9_]*)*$"
+# A part between '/' starts with a letter or '_'; ROS 2's {node} may stand in any part of it.
+_ROS_TOKEN = r"(?:[A-Za-z_]|\{node\})(?:[A-Za-z0-9_]|\{node\})*"
+_ROS_NAME = rf"^(~/|/)?{_ROS_TOKEN}(/{_ROS_TOKEN})*$"
 _TYPE = r"^([a-z](?:[a-z0-9]|_(?=[a-z0-9]))*/((msg|srv|action)/)?)?[A-Z][A-Za-z0-9]*$"
 
 

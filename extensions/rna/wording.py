@@ -74,12 +74,14 @@ def summary_parts(node) -> list[str]:
     return parts
 
 
-def summary_lines(node, width: int = 88) -> list[str]:
-    """The summary wrapped for a docstring or comment, after a blank line.
+def summary_lines(node, width: int = 88, escape=None) -> list[str]:
+    """The summary wrapped for a docstring or comment, after a blank line; `escape` spells the
+    text for where it lands first (a Python docstring's three double quotes).
 
     No line ends with a backslash, which would continue a C++ `//` comment onto the next.
     """
-    lines = textwrap.wrap(node_summary(node), width)
+    text = node_summary(node)
+    lines = textwrap.wrap(escape(text) if escape else text, width)
     for index in range(len(lines) - 1):
         while lines[index].endswith("\\") or lines[index].endswith("??/"):
             head, _, word = lines[index].rpartition(" ")

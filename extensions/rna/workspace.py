@@ -13,7 +13,7 @@ import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-from . import layout
+from . import files, layout
 
 _SKIP = {"build", "install", "log", "devel", "node_modules", "__pycache__"}
 _NAME = re.compile(r"<name>\s*([^<\s]+)\s*</name>")
@@ -37,15 +37,12 @@ def _packages(root: Path, depth: int = 4):
     """(package name, folder) of every package.xml under root, not descending into packages."""
     if not root.is_dir():
         return
-    for current, folders, files in os.walk(root):
+    for current, folders, names in os.walk(root):
         level = len(Path(current).relative_to(root).parts)
         folders[:] = [f for f in folders if not f.startswith(".") and f not in _SKIP] if level < depth else []
-        if "package.xml" in files:
+        if "package.xml" in names:
             folders[:] = []
-            try:
-                match = _NAME.search((Path(current) / "package.xml").read_text(errors="replace"))
-            except OSError:
-                continue
+            match = _NAME.search(files.text(Path(current), "package.xml") or "")
             if match:
                 yield match[1], Path(current)
 
@@ -72,12 +69,12 @@ def find_interfaces(destination: Path, limit: int = 200) -> list[str]:
 
 def read_package(folder: Path) -> dict | None:
     """What a node added to the package in `folder` needs from its package.xml, or None."""
-    manifest = Path(folder) / "package.xml"
-    if not manifest.is_file():
+    manifest = files.text(Path(folder), "package.xml")
+    if manifest is None:
         return None
     try:
-        root = ET.parse(manifest).getroot()
-    except (ET.ParseError, OSError):
+        root = ET.fromstring(manifest)  # text: its declared encoding was read already
+    except ET.ParseError:
         return None
 
     def text(tag: str) -> str:

@@ -13,6 +13,7 @@ Run with the ROS venv's Python (the test process itself has no rclpy):
                                                /decoy, print "decoys up", run until killed
   ros2_probe.py sees NODE                      print "seen" once another process's NODE is in
                                                the graph
+  ros2_probe.py hears TOPIC PKG/msg/TYPE       print "heard" once a message arrives on TOPIC
   ros2_probe.py goal_result ACTION             send a test_msgs/Fibonacci goal, print "executing"
                                                at its first feedback, then its result as JSON
   ros2_probe.py gating NODE SERVICE ACTION     drive a lifecycle node: while inactive, is the
@@ -24,6 +25,7 @@ Exits non-zero when the node does not answer.
 
 from __future__ import annotations
 
+import importlib
 import json
 import sys
 import time
@@ -182,6 +184,20 @@ def sees(node, target, _):
     print("seen", flush=True)
 
 
+def hears(node, topic, names):
+    """Print "heard" once a message of type names[0] (pkg/msg/Type) arrives on `topic`."""
+    package, _, name = names[0].split("/")
+    message = getattr(importlib.import_module(f"{package}.msg"), name)
+    heard = []
+    node.create_subscription(message, topic, heard.append, 10)
+    deadline = time.monotonic() + TIMEOUT
+    while not heard:
+        if time.monotonic() > deadline:
+            sys.exit(f"nothing heard on {topic}")
+        rclpy.spin_once(node, timeout_sec=0.1)
+    print("heard", flush=True)
+
+
 def _spin_until(node, future, within=TIMEOUT):
     deadline = time.monotonic() + within
     while not future.done() and time.monotonic() < deadline:
@@ -239,7 +255,7 @@ def main():
     node = rclpy.create_node("rna_test_probe")
     try:
         {"params": params, "lifecycle": lifecycle, "busy_goal": busy_goal,
-         "transitions": transitions, "decoy": decoy, "sees": sees, "goal_result": goal_result,
+         "transitions": transitions, "decoy": decoy, "sees": sees, "hears": hears, "goal_result": goal_result,
          "gating": gating}[command](node, target, rest)
     finally:
         node.destroy_node()

@@ -45,6 +45,7 @@ from .generation import (
     ANSWERS_FILE, FIXED_ANSWERS, ROOT, TEMPLATE_ITEMS, answers_of, example, git, snapshot_template, subprocess_env,
 )
 from .packages import rna
+from rna import files  # noqa: E402 - found once .packages has put extensions/ on the path
 from .releases import ReleaseError, following_version, release_commit, tag_name, versions
 
 RELEASES = tuple(tag_name(version) for version in reversed(versions(ROOT)))  # oldest first
@@ -356,9 +357,11 @@ def broken_packages(project: Path) -> list[str]:
         if not build_file.is_file():
             problems.append(f"{where}: {build_type} without {build_file.name}")
         elif build_file.name == "CMakeLists.txt":
-            problems += [f"{where}/CMakeLists.txt: {p}" for p in _cmake_problems(build_file.read_text(), folder)]
+            text = files.text(folder, build_file.name) or ""
+            problems += [f"{where}/CMakeLists.txt: {p}" for p in _cmake_problems(text, folder)]
         else:
-            problems += [f"{where}/setup.py: {p}" for p in _setup_py_problems(build_file.read_text(), folder)]
+            text = files.text(folder, build_file.name) or ""
+            problems += [f"{where}/setup.py: {p}" for p in _setup_py_problems(text, folder)]
     return problems
 
 
@@ -383,6 +386,26 @@ def _setup_py_problems(text: str, folder: Path) -> list[str]:
     return [f"entry point {name} names {module}, which does not exist"
             for name, module in re.findall(r"'(\w+) = ([\w.]+):\w+'", text)
             if not (folder / (module.replace(".", "/") + ".py")).is_file()]
+
+
+# ─── The update tier's merge-safety figure ────────────────────────────────────
+
+FIGURE = "merge_safety"
+
+
+@pytest.fixture
+def figure(record_property):
+    """figure(result, project, user_lines, lost=0): records one update's tally (before the test's
+    asserts): the user's lines (path, lines) missing after it, plus `lost` counted otherwise
+    (bytes of files the update does not own, tests/test_real_packages.py), and whether it
+    exited 0 with a package that does not parse or build. conftest.py sums them."""
+    def count(result, project: Path, user_lines: list[tuple[str, list[str]]] = (), lost: int = 0) -> None:
+        for path, lines in user_lines:  # a line of an edit may be part of a line (a value replaced)
+            text = (project / path).read_text() if (project / path).is_file() else ""
+            lost += sum(1 for line in lines if line.strip() and line not in text)
+        broken = result.returncode == 0 and bool(broken_packages(project))
+        record_property(FIGURE, {"lost": lost, "broken": int(broken)})
+    return count
 
 
 # ─── User edits ───────────────────────────────────────────────────────────────

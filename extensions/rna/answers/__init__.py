@@ -41,6 +41,9 @@ QUICK_LISTS = {
     "node_parameters": "parameters",
 }
 
+# The one-node questions: a first copy's way to `nodes`, which the answers file records instead.
+FIRST_COPY = ("node_language", "node_name", *QUICK_LISTS)
+
 # The demo: a talker and a listener on one topic.
 DEMO_NODES = [
     {"name": "talker", "publishers": ["chatter:std_msgs/msg/String"], "timers": [0.5]},
@@ -287,39 +290,54 @@ def _shape_error(value: object, question_type: str | None) -> str | None:
     return None
 
 
-def check_given(given: Mapping, types: Mapping[str, str] | None = None) -> None:
-    """AnswerError for the first answer given on the command line that Copier would refuse.
+# Answers whose choices depend on others: checked once those are known (check_given), and
+# at once against every choice they may have.
+DEPENDS_ON = {"build_type": ("ros_distro",), "launch_format": ("ros_distro",),
+              "interfaces_location": ("ros_distro", "build_type")}
+ANY_OF = {"build_type": distros.BUILD_TYPES, "launch_format": layout.LAUNCH_FORMATS[2],
+          "interfaces_location": ("separate", "package")}
+
+
+def check_given(given: Mapping, types: Mapping[str, str] | None = None, around: Mapping | None = None,
+                skip: set[str] = frozenset()) -> set[str]:
+    """AnswerError for the first answer given on the command line that Copier would refuse;
+    returns the questions checked (not those in `skip`, already checked).
 
     `types`: each question's `type:` in copier.yml; Copier casts a given answer to it, and
-    one it cannot cast ends in a traceback. A rule that depends on another answer is
-    checked only when that one is given too: on an update the others come from the answers
-    file, which is not read here.
+    one it cannot cast ends in a traceback. `around`: the other answers known so far (the
+    answers file's on an update, those answered or defaulted before on a copy). An answer
+    whose choices depend on others (a build type for the distro) is checked once they are
+    given or known; until then it is left for a later call.
     """
+    around = {**(around or {}), **given}
+    if distros.generation(around.get("ros_distro")) == 1 and "build_type" not in given:
+        around["build_type"] = "catkin"  # not asked in ROS 1
+    checked = set()
     for question, value in given.items():
+        if question in skip:
+            continue
         try:
             shape = _shape_error(value, (types or {}).get(question))
             if shape:
                 raise ValueError(shape)
+            if question in ANY_OF and value not in ANY_OF[question]:  # whatever the other answers
+                raise ValueError(f"'{value}' is not one of {', '.join(ANY_OF[question])}")
+            if any(around.get(other) is None for other in DEPENDS_ON.get(question, ())):
+                continue  # checked again once what it depends on is known
             if question == "copyright_year":
                 Answers(given).read(question)
             if question in _CHOICES and value not in _CHOICES[question]:
                 raise ValueError(f"'{value}' is not one of {', '.join(_CHOICES[question])}")
             if question in ("ros_distro", "license"):
                 Answers(given).read(question)
-            elif question == "build_type" and "ros_distro" in given:
-                Answers(given).read(question)
-            elif question == "launch_format" and "ros_distro" in given:
-                Answers(given).read(question)
-            elif question == "launch_format" and value not in layout.LAUNCH_FORMATS[2]:
-                raise ValueError(f"'{value}' is not one of {', '.join(layout.LAUNCH_FORMATS[2])}")
-            elif question == "build_type" and value not in distros.BUILD_TYPES:
-                raise ValueError(f"'{value}' is not one of {', '.join(distros.BUILD_TYPES)}")
-            elif question == "interfaces_location":
-                Answers({"build_type": None, **given}).read(question)
+            elif question in DEPENDS_ON:
+                Answers(around).read(question)
             elif question in ("nodes", "interfaces"):
                 load_yaml(value)
         except ValueError as error:
             raise AnswerError(question, str(error)) from None
+        checked.add(question)
+    return checked
 
 
 def build_package(answers: Mapping) -> Package:
@@ -336,5 +354,5 @@ def question_error(question: str, answers: Mapping) -> str | None:
     return None
 
 
-__all__ = ["QUESTIONS", "QUICK_LISTS", "AnswerError", "Answers", "build_package", "check_given", "question_error",
-           "split_list"]
+__all__ = ["FIRST_COPY", "QUESTIONS", "QUICK_LISTS", "AnswerError", "Answers", "build_package", "check_given",
+           "question_error", "split_list"]

@@ -112,7 +112,7 @@ def _parse_topic(item: object, role: str, types: Types) -> Topic:
     check_keys(item, ("topic", "type", "qos", "id"), role)
     topic = item.get("topic")
     what = f"{role} '{topic}'"
-    error = names.topic_name_error(topic, "topic")
+    error = names.topic_name_error(topic, "topic", types.ros)
     if error:
         raise ValueError(f"{role}: {error}")
     interface = types.parse(item.get("type"), "msg")
@@ -132,7 +132,7 @@ def _parse_service_or_action(item: object, cls: type, kind: str, role: str, type
         raise ValueError(f"write a {what} as 'name:type' or a mapping with name and type")
     check_keys(item, ("name", "type", "id"), what)
     name = item.get("name")
-    error = names.topic_name_error(name, "service" if kind == "srv" else "action")
+    error = names.topic_name_error(name, "service" if kind == "srv" else "action", types.ros)
     if error:
         raise ValueError(f"{what}: {error}")
     interface = types.parse(item.get("type"), kind)
@@ -297,9 +297,6 @@ def parse_node(item: object, *, package: str, build_type: str, types: Types) -> 
         description = item.get("description") or ""
         if description and names.one_line_error(description):
             raise ValueError(f"description: {names.one_line_error(description)}")
-        if '"""' in description:
-            raise ValueError('description: write it without three double quotes ("""), which would end the Python '
-                             'docstring it goes in')
         node = Node(
             name=name,
             language=language,
@@ -391,7 +388,7 @@ def _check_connections(nodes: tuple[Node, ...]) -> None:
         for endpoint in node.endpoints:
             if isinstance(endpoint, Timer):
                 continue
-            name = names.graph_name(endpoint.topic if isinstance(endpoint, Topic) else endpoint.name)
+            name = names.graph_name(endpoint.topic if isinstance(endpoint, Topic) else endpoint.name, node.name)
             if name is not None:
                 ends.setdefault((type(endpoint).__name__, name), []).append((node.name, endpoint))
     for (kind, name), found in ends.items():

@@ -25,6 +25,7 @@ SHORT_LIST = 6  # a package with this many types of a kind or fewer has them all
 def load(distro: str) -> dict | None:
     """The catalogue of `distro` as written by make_catalogue.py, None if there is none."""
     path = FOLDER / f"{distro}.json"
+    # not through rna/files.py: the template's
     return json.loads(path.read_text(encoding="utf-8")) if path.is_file() else None
 
 

@@ -7,7 +7,7 @@ from collections.abc import Iterable
 from functools import cached_property
 
 from .. import features, names
-from .lines import NESTED_BREAK, NESTED_SPLIT, SPLIT, splittable
+from .lines import LIMITS, NESTED_BREAK, NESTED_SPLIT, SPLIT, columns, splittable
 from ..parameters import INT_RANGE, ParameterType
 
 _SCALARS = {"bool": "bool", "int": "int64_t", "double": "double", "string": "std::string"}
@@ -112,6 +112,13 @@ class CppDialect:
 
     SCALARS = _SCALARS
     string = staticmethod(string)
+
+    @staticmethod
+    def overriding(declaration: str, indent: str = "  ") -> str:
+        """The last line of a method's declaration with its `override`, which uncrustify (ROS's
+        configuration) moves to a line of its own, at the method's indent, past 100 columns."""
+        line = f"{declaration} override"
+        return line if columns(line, "cpp") <= LIMITS["cpp"][0] else f"{declaration}\n{indent}override"
 
     @staticmethod
     def value(value: bool | str) -> str:

@@ -76,8 +76,31 @@ def literal(value: object, split: bool = False) -> str:
 
 
 def docstring_prefix(text: str) -> str:
-    """'r' for a docstring holding a backslash: pydocstyle (D301) wants it raw."""
-    return "r" if "\\" in text else ""
+    """'r' for a docstring holding a backslash, or three double quotes (docstring_text escapes
+    them with one): pydocstyle (D301) wants it raw."""
+    return "r" if "\\" in text or '"""' in text else ""
+
+
+def docstring_text(line: str) -> str:
+    """Free text for a docstring: no three double quotes in a row, which would end it, nor in
+    the text it reads as (pydocstyle then wants the docstring in single quotes, D300): every
+    third quote of a run is escaped, as in `""\\""\\""` for six (the raw docstring,
+    docstring_prefix, keeps the backslashes)."""
+    written, run = [], 0
+    for char in line:
+        if char == '"' and run == 2:
+            written.append('\\"')
+            run = 1
+        else:
+            written.append(char)
+            run = run + 1 if char == '"' else 0
+    return "".join(written)
+
+
+def fstring_text(text: str) -> str:
+    """Text for an f-string as it stands (a ROS 2 name's {node} would be an expression there),
+    cut where a long word may be (the braces written twice make it longer than the name)."""
+    return splittable((char, char * 2 if char in "{}" else char) for char in text)
 
 
 def text_literal(text: str, column: int, indent: int, width: int = 99) -> str:
@@ -174,6 +197,8 @@ class PythonDialect:
 
     text_literal = staticmethod(text_literal)
     docstring_prefix = staticmethod(docstring_prefix)
+    docstring_text = staticmethod(docstring_text)
+    fstring_text = staticmethod(fstring_text)
 
     @cached_property
     def types(self) -> dict:

@@ -22,6 +22,7 @@ import re
 import xml.etree.ElementTree as ET
 
 from .project import Project, Render
+from .protect import edited
 from .summary import Report
 
 BLOCK = re.compile(r"^[^\n]*BEGIN rna-template[^\n]*\n.*?^[^\n]*END rna-template[^\n]*$", re.M | re.S)
@@ -115,7 +116,7 @@ def cmake_without_duplicates(text: str) -> tuple[str, list[str]]:
 def package_xml_problems(text: str) -> list[str]:
     """Why catkin_pkg would refuse this package.xml (the checks an update can break), or []."""
     try:
-        root = ET.fromstring(text.encode())
+        root = ET.fromstring(text)  # text: the declared encoding was read already (rna/files.py)
     except ET.ParseError as error:
         return [f"it is not well-formed XML ({error})"]
     tags: dict[str, list[str]] = {}
@@ -131,10 +132,14 @@ def package_xml_problems(text: str) -> list[str]:
     return problems
 
 
+CPP_SUFFIXES = (".cpp", ".hpp", ".h", ".cc", ".hh", ".hxx", ".cxx")
+CODE_SUFFIXES = (*CPP_SUFFIXES, ".py")
+
+
 def uses(text: str, package: str, suffix: str) -> bool:
     """Whether code in a C++ or Python file includes or imports `package`."""
     name = re.escape(package)
-    if suffix in (".cpp", ".hpp", ".h", ".cc", ".hh", ".hxx", ".cxx"):
+    if suffix in CPP_SUFFIXES:
         return re.search(rf"^\s*#\s*include\s*[<\"]{name}/", text, re.M) is not None
     if suffix == ".py":
         return re.search(rf"^\s*(?:from|import)\s+{name}(?:\.|\s|$)", text, re.M) is not None
@@ -165,11 +170,15 @@ def dropped_but_used(project: Project, old: Render, report: Report) -> None:
         if after is None or "<<<<<<< " in after:
             continue
         dropped = set(declared(before or "")) - set(declared(after))
+        if not dropped:
+            continue
         folder = posixpath.dirname(path)
         for file in sorted(project.committed_files):
-            if not file.startswith(f"{folder}/" if folder else "") or project.committed(file) == old.text(file):
-                continue  # not in this package, or not the user's
-            text, suffix = project.text(file), posixpath.splitext(file)[1]
+            suffix = posixpath.splitext(file)[1]
+            if suffix not in CODE_SUFFIXES or not file.startswith(f"{folder}/" if folder else "") \
+                    or not edited(project, old, file):
+                continue  # not code, not in this package, or not the user's
+            text = project.text(file)
             for package in sorted(dropped):
                 if text is not None and uses(text, package, suffix):
                     report.problems.append(

@@ -5,7 +5,8 @@ template changes in it is per parameter: a default, a parameter added or dropped
 description (the comment line above a parameter). So the merge starts from the user's
 file and applies exactly those changes to it:
 
-- a value the user never tuned takes the new default, in place (an inline comment stays);
+- a value the user never tuned takes the new default, in place (the user's comments on
+  its lines stay, on the value's last line);
 - a parameter the template adds goes after the one it follows in the template's order;
 - a parameter the template drops goes, with its description, unless the user tuned it;
 - the user's own parameters and comments stay as they are;
@@ -106,11 +107,16 @@ def _comment_start(rest: str) -> int:
     return len(rest)
 
 
-def _with_value(line: str, name: str, value: object) -> str:
-    match = KEY.match(line)
-    rest = match["rest"]
-    comment = rest[_comment_start(rest):]
-    return yaml_entry(match["indent"], match["key"], value) + (f"  {comment}" if comment else "")
+def _with_value(lines: list[str], value: object) -> list[str]:
+    """A parameter's lines (its key's and those its value goes on over) with another value, the
+    user's comments on them kept: on the last line of the value, as the user put them."""
+    match = KEY.match(lines[0])
+    comments = [rest[_comment_start(rest):] for rest in (match["rest"], *lines[1:])]
+    written = yaml_entry(match["indent"], match["key"], value).split("\n")
+    kept = " ".join(comment for comment in comments if comment)
+    if kept:
+        written[-1] += f"  {kept}"
+    return written
 
 
 @dataclass
@@ -169,7 +175,7 @@ def merge(old_text: str, mine_text: str, new_text: str, descriptions: tuple[dict
             edits.append((first, last, []))
             continue
         if wanted[name] != mine[name]:
-            edits.append((entry.key, entry.end, [_with_value(lines[entry.key], name, wanted[name])]))
+            edits.append((entry.key, entry.end, _with_value(lines[entry.key:entry.end], wanted[name])))
         above = description_above(entry)
         before, after = old_descriptions.get(name), new_descriptions.get(name)
         if before != after and above is not None and lines[above].strip() == f"# {before}":
@@ -218,7 +224,7 @@ def marked(text: str, conflicts: dict[str, tuple[object, object]]) -> str:
         entry = places.entries[name]
         yours = lines[entry.key:entry.end]
         lines[entry.key:entry.end] = ["<<<<<<< before updating", *yours, "=======",
-                                      _with_value(yours[0], name, theirs), ">>>>>>> after updating"]
+                                      *_with_value(yours, theirs), ">>>>>>> after updating"]
     return "\n".join(lines)
 
 
@@ -229,22 +235,24 @@ def _rejected(path: str, text: str, conflicts: dict[str, tuple[object, object]])
     theirs = list(lines)
     for name, (_, value) in sorted(conflicts.items(), key=lambda item: -places.entries[item[0]].key):
         entry = places.entries[name]
-        theirs[entry.key:entry.end] = [_with_value(lines[entry.key], name, value)]
+        theirs[entry.key:entry.end] = _with_value(lines[entry.key:entry.end], value)
     return "\n".join(difflib.unified_diff(lines, theirs, f"a/{path}", f"b/{path}", lineterm="")) + "\n"
 
 
-def write_merged(project: Project, path: str, merged: Merged) -> None:
+def write_merged(project: Project, path: str, merged: Merged) -> bool:
     """The merged file, its conflicts marked in it or in a .rej file beside it, as the
-    update's --conflict asked (what Copier did with the file, when it was not told)."""
+    update's --conflict asked (what Copier did with the file, when it was not told); whether
+    it could be written."""
     rejected = project.root / f"{path}.rej"
     in_a_rej_file = project.conflict == "rej" if project.conflict else rejected.exists()
     if merged.conflicts and in_a_rej_file:
-        project.write(path, merged.text)
-        rejected.write_text(_rejected(path, merged.text, merged.conflicts))
-    else:
-        project.write(path, marked(merged.text, merged.conflicts) if merged.conflicts else merged.text)
-        if rejected.exists():
-            rejected.unlink()
+        return project.write(path, merged.text) and project.write(f"{path}.rej", _rejected(path, merged.text,
+                                                                                            merged.conflicts))
+    if not project.write(path, marked(merged.text, merged.conflicts) if merged.conflicts else merged.text):
+        return False
+    if rejected.exists():
+        rejected.unlink()
+    return True
 
 
 def descriptions_of(package: Package | None, path: str) -> dict:
@@ -265,9 +273,8 @@ def merge_config_files(project: Project, old: Render, new: Render, packages: tup
             continue
         merged = merge(generated, before, new.text(path), (descriptions_of(packages[0], path),
                                                            descriptions_of(packages[1], path)))
-        if merged is None:
+        if merged is None or not write_merged(project, path, merged):
             continue  # not YAML the merge can read: Copier's line merge stands, conflicts and all
-        write_merged(project, path, merged)
         if not merged.conflicts:
             project.resolve_in_index(path)
         report.merged.add(path)

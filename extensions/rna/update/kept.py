@@ -33,13 +33,13 @@ POINTER = ".rna-kept-renders"
 
 
 def point(template: Path, folder: str) -> None:
-    (template / POINTER).write_text(folder)
+    (template / POINTER).write_text(folder)  # not through rna/files.py: Copier's clone of the template
 
 
 def pointed(template: Path) -> str | None:
     """The folder of kept renders named in `template`, if any."""
     try:
-        return (template / POINTER).read_text().strip() or None
+        return (template / POINTER).read_text().strip() or None  # not through rna/files.py: Copier's clone
     except OSError:
         return None
 
@@ -53,12 +53,14 @@ def kind_of(destination: Path) -> str | None:
 def keep(folder: Path, kind: str, destination: Path, answers_text: str) -> None:
     """Copy the render in `destination` to `folder`/`kind`, once per render (the hook runs more than once)."""
     target = folder / kind
+    # not through rna/files.py: scratch
     if (target / "from").is_file() and (target / "from").read_text() == str(destination):
         return
     shutil.rmtree(target, ignore_errors=True)  # a render of an earlier update in this process
+    # not through rna/files.py: a render of the template, copied as it is
     shutil.copytree(destination, target / "files", symlinks=True, ignore=shutil.ignore_patterns(".git"))
-    (target / "answers.yml").write_text(answers_text)
-    (target / "from").write_text(str(destination))
+    (target / "answers.yml").write_text(answers_text)  # not through rna/files.py: scratch
+    (target / "from").write_text(str(destination))  # not through rna/files.py: scratch
 
 
 def kept(folder: str | None, kind: str, answers: dict) -> Path | None:
@@ -67,7 +69,7 @@ def kept(folder: str | None, kind: str, answers: dict) -> Path | None:
         return None
     target = Path(folder) / kind
     try:
-        recorded = yaml.safe_load((target / "answers.yml").read_text())
+        recorded = yaml.safe_load((target / "answers.yml").read_text())  # not through rna/files.py: scratch
     except (OSError, yaml.YAMLError):
         return None
     if not isinstance(recorded, dict) or recorded != answers or "_commit" not in answers:

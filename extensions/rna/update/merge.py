@@ -43,10 +43,11 @@ def merge3(ours: str, base: str, theirs: str) -> tuple[str, bool]:
         paths = []
         for name, text in (("ours", ours), ("base", base), ("theirs", theirs)):
             path = Path(scratch, name)
-            path.write_text(text)
+            path.write_bytes(text.encode("utf-8", "surrogateescape"))  # not through rna/files.py: the merge's scratch
             paths.append(str(path))
         result = subprocess.run(["git", "merge-file", "-p", "--diff3", "-L", OURS[8:], "-L", BASE[8:],
-                                 "-L", END[8:], *paths], capture_output=True, text=True, check=False)
+                                 "-L", END[8:], *paths], capture_output=True, encoding="utf-8",
+                                errors="surrogateescape", check=False)
     if result.returncode < 0 or result.returncode > 127:
         raise RuntimeError(f"git merge-file failed: {result.stderr}")
     merged, conflicted, region, side = [], False, {}, None
@@ -76,7 +77,8 @@ def settle_conflicts(project: Project, old: Render, new: Render, report: Report,
     """Files Copier left in conflict (markers or .rej) merged again here, kept when no conflict is left.
 
     `skip`: files merged otherwise; `handled`: files an earlier step merged already."""
-    for path in sorted(project.current_files()):
+    added, changed, _ = project.changed_files()
+    for path in sorted(added | changed):
         target = path[:-4] if path.endswith(".rej") else path
         text = project.text(target)
         if skip.search(target) or target in handled or text is None or not (path.endswith(".rej") or OURS in text):
@@ -85,9 +87,8 @@ def settle_conflicts(project: Project, old: Render, new: Render, report: Report,
         if None in (ours, base, theirs):
             continue
         merged, conflicted = merge3(ours, base, theirs)
-        if conflicted:
+        if conflicted or not project.write(target, merged):
             continue
-        project.write(target, merged)
         if (project.root / f"{target}.rej").exists():
             (project.root / f"{target}.rej").unlink()
         project.resolve_in_index(target)

@@ -166,13 +166,16 @@ def port_node_files(project: Project, old: Render, new: Render, packages: tuple[
         if not edited(project, old, source) or old_starter is None or new_starter is None:
             continue  # the starter: the new one follows the template (Copier, protect.py)
         mine = project.committed(source)
+        if mine is None:
+            continue  # not text: kept as it is
         if node.is_python:
             result = code.port_python(mine, old_starter, new_starter, python_context(before, node, old_package))
         else:
             base = new.text(_in(new_package, node.base_file)) or ""
             result = code.port_cpp(mine, old_starter, new_starter,
                                    cpp_context(before, node, old_package, new_starter, base))
-        project.write(target, result.text)
+        if not project.write(target, result.text, like=source):  # in the user's encoding and line ends
+            continue
         if source != target:
             project.remove(source)
         _settled(project, source, target)
@@ -193,7 +196,8 @@ def _carried(project: Project, old: Render, new: Render, source: str, target: st
     if mine is None or generated is None or fresh is None or mine == generated:
         return set()
     result = carry(mine, generated, fresh)
-    project.write(target, result.text)
+    if not project.write(target, result.text, like=source):
+        return set()
     if source != target:
         project.remove(source)
     _settled(project, source, target)
@@ -270,8 +274,12 @@ def port_own_launch_files(project: Project, old: Render, packages: tuple[Package
         target = path + ".xml"
         if (project.root / target).exists():
             continue
-        result = build.port_launch_file(project.committed(path) or "", context)
-        project.write(target, result.text)
+        mine = project.committed(path)
+        if mine is None:
+            continue  # not text: left as it is
+        result = build.port_launch_file(mine, context)
+        if not project.write(target, result.text, like=path):
+            continue
         project.remove(path)
         report.ported.append(Ported(target, path, tuple(result.rewrites), result.todos))
         handled |= {path, target}
@@ -340,7 +348,8 @@ def port_own_code(project: Project, old: Render, new: Render, packages: tuple[Pa
         if target != path:
             project.restore(path, to=target)
             project.remove(path)
-        project.write(target, result.text)
+        if not project.write(target, result.text, like=path):
+            continue
         report.ported.append(Ported(target, path, _rewrite_lines(result), result.todos))
         handled |= {path, target}
     return handled

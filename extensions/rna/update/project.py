@@ -4,19 +4,25 @@
 user had before the update. The old and new renders are fresh copies of the template
 (old version with the old answers, new version with the new ones) in scratch folders:
 together they tell, for every file, whether the user edited it and whether the template
-changed it.
+changed it. Every file is read and written through rna/files.py: binary files, other
+encodings, CRLF line ends, symbolic links and large files come through as they were.
 """
 
 from __future__ import annotations
 
-import contextlib
+import os
 import subprocess
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .. import files
+from ..files import Content
+
 
 def git(project: Path, *args: str, check: bool = True, stdin: str | None = None) -> subprocess.CompletedProcess:
-    return subprocess.run(["git", *args], cwd=project, capture_output=True, text=True, check=check, input=stdin)
+    """git's output as text; paths that are not UTF-8 come through as Python's file system names."""
+    return subprocess.run(["git", *args], cwd=project, capture_output=True, encoding="utf-8",
+                          errors="surrogateescape", check=check, input=stdin)
 
 
 def render(template: str, commit: str, answers: dict, destination: Path) -> Path:
@@ -30,19 +36,14 @@ def render(template: str, commit: str, answers: dict, destination: Path) -> Path
 
 
 def files_under(root: Path) -> set[str]:
-    """Every file below `root` (relative paths), `.git` left out."""
-    return {str(path.relative_to(root)) for path in root.rglob("*")
-            if path.is_file() and ".git" not in path.relative_to(root).parts}
-
-
-def read(root: Path, path: str) -> str | None:
-    file = root / path
-    if not file.is_file():
-        return None
-    try:
-        return file.read_text()
-    except UnicodeDecodeError:
-        return file.read_bytes().decode("latin-1")  # compared, never parsed
+    """Every file below `root` (relative paths), `.git` left out; links are not followed."""
+    found = set()
+    for folder, folders, names in os.walk(root):
+        folders[:] = [name for name in folders if name != ".git"]
+        found.update(str(Path(folder, name).relative_to(root)) for name in names)
+        # a link to a folder is listed by os.walk among the folders, and is a file here
+        found.update(str(Path(folder, name).relative_to(root)) for name in folders if Path(folder, name).is_symlink())
+    return found
 
 
 @dataclass
@@ -55,8 +56,25 @@ class Render:
     def __post_init__(self) -> None:
         self.files = files_under(self.root)
 
+    def content(self, path: str) -> Content | None:
+        return files.read(self.root, path, owned=True) if path in self.files else None
+
     def text(self, path: str) -> str | None:
-        return read(self.root, path) if path in self.files else None
+        content = self.content(path)
+        return content.text if content is not None else None
+
+
+@dataclass(frozen=True)
+class Entry:
+    """A file of the last commit, from `git ls-tree`."""
+
+    mode: str
+    object: str
+    size: int
+
+    @property
+    def is_link(self) -> bool:
+        return self.mode == "120000"
 
 
 @dataclass
@@ -66,84 +84,131 @@ class Project:
     root: Path
     answers_file: str
     conflict: str | None = None  # how the update was told to leave conflicts: inline or rej
-    _committed: dict[str, str | None] = field(default_factory=dict, init=False, repr=False)
+    owned: set[str] = field(default_factory=set)  # what the template makes: read whatever its size
+    unwritable: list[tuple[str, str]] = field(default_factory=list)  # (path, why) a step could not write
+    _committed: dict[str, Content | None] = field(default_factory=dict, init=False, repr=False)
 
     def __post_init__(self) -> None:
         self.prefix = git(self.root, "rev-parse", "--show-prefix").stdout.strip()
         # --full-name: from a package inside a larger repository git lists paths from
-        # this folder otherwise, and the prefix is taken off below.
-        listed = git(self.root, "ls-tree", "-r", "-z", "--full-name", "--name-only", "HEAD", "--", ".").stdout
-        self.committed_files = {name[len(self.prefix):] for name in listed.split("\0") if name}
+        # this folder otherwise, and the prefix is taken off below. -l: each blob's size.
+        listed = git(self.root, "ls-tree", "-r", "-z", "-l", "--full-name", "HEAD", "--", ".").stdout
+        self.entries: dict[str, Entry] = {}
+        for line in filter(None, listed.split("\0")):
+            meta, _, name = line.partition("\t")
+            mode, kind, obj, size = meta.split()
+            if kind == "blob":  # a submodule is a commit: not a file of this project
+                self.entries[name[len(self.prefix):]] = Entry(mode, obj, int(size))
+        self.committed_files = set(self.entries)
 
-    def committed(self, path: str) -> str | None:
+    # --- the last commit
+
+    def committed_content(self, path: str) -> Content | None:
         """The file as the user committed it, or None."""
         if not self._committed:
             self._committed.update(self._all_committed())
         if path not in self._committed:
-            shown = git(self.root, "show", f"HEAD:{self.prefix}{path}", check=False) \
-                if path in self.committed_files else None
-            self._committed[path] = shown.stdout if shown is not None and shown.returncode == 0 else None
+            entry = self.entries.get(path)
+            self._committed[path] = None if entry is None else self._read_committed(path, entry)
         return self._committed[path]
 
-    def _all_committed(self) -> dict[str, str]:
-        """Every committed file that reads as UTF-8, from one git process (the update reads them all)."""
-        paths = sorted(path for path in self.committed_files if "\n" not in path)
-        listed = "".join(f"HEAD:{self.prefix}{path}\n" for path in paths).encode()
-        output = subprocess.run(["git", "cat-file", "--batch"], cwd=self.root, input=listed, capture_output=True,
-                                check=False).stdout
-        found, start = {}, 0
-        for path in paths:
-            end = output.find(b"\n", start)
-            if end < 0:  # git stopped short: the rest is read alone when asked
-                break
-            header = output[start:end].split()
-            start = end + 1
-            if len(header) != 3 or not header[2].isdigit():  # "<name> missing": no content follows
-                continue
-            size = int(header[2])
-            if header[1] == b"blob":
-                with contextlib.suppress(UnicodeDecodeError):  # read alone, as before, when asked
-                    # as `git show` read in text mode gives it: universal newlines
-                    found[path] = output[start:start + size].decode().replace("\r\n", "\n").replace("\r", "\n")
-            start += size + 1
-        return found
+    def committed(self, path: str) -> str | None:
+        """The text of the file as the user committed it, or None (no such file, not text)."""
+        content = self.committed_content(path)
+        return content.text if content is not None else None
+
+    def _read_committed(self, path: str, entry: Entry) -> Content:
+        if entry.size > files.LARGE and not entry.is_link and path not in self.owned:
+            return Content("large", size=entry.size)
+        data = files.blob(self.root, entry.object)
+        return files.link(data) if entry.is_link else files.of_bytes(data)
+
+    def _all_committed(self) -> dict[str, Content]:
+        """Every committed file the update reads (not the large ones), from one git process."""
+        wanted = {path: entry for path, entry in self.entries.items() if entry.size <= files.LARGE or entry.is_link}
+        found = files.blobs(self.root, sorted({entry.object for entry in wanted.values()}))
+        return {path: files.link(found[entry.object]) if entry.is_link else files.of_bytes(found[entry.object])
+                for path, entry in wanted.items() if entry.object in found}
+
+    def committed_mode(self, path: str) -> str | None:
+        entry = self.entries.get(path)
+        return entry.mode if entry is not None else None
+
+    # --- the project now
+
+    def content(self, path: str) -> Content | None:
+        """The file as it is now."""
+        return files.read(self.root, path, owned=path in self.owned)
 
     def text(self, path: str) -> str | None:
-        """The file as it is now."""
-        return read(self.root, path)
+        """The text of the file as it is now, or None (no such file, not text)."""
+        content = self.content(path)
+        return content.text if content is not None else None
 
-    def write(self, path: str, text: str) -> None:
-        target = self.root / path
-        target.parent.mkdir(parents=True, exist_ok=True)
-        target.write_text(text)
+    def write(self, path: str, text: str, like: str | None = None) -> bool:
+        """Write `text` to `path` as the user's file holds text: in its encoding and line ends
+        (the file as committed at `like`, or at `path`, or as it is now). Whether it was written:
+        a file that cannot be (a link, a folder leading out of the project, text its encoding
+        cannot hold) is left as it is and listed for the user."""
+        committed = self.committed_content(like or path)
+        try:
+            files.write(self.root, path, text, committed if committed is not None and committed.kind == "text"
+                        else None)
+        except files.NotWritable as error:
+            self.unwritable.append((path, str(error)))
+            return False
+        return True
 
     def restore(self, path: str, to: str | None = None) -> None:
-        """Put the committed file back, at its place or at `to`, with its mode."""
-        target = self.root / (to or path)
-        target.parent.mkdir(parents=True, exist_ok=True)
-        target.write_text(self.committed(path) or "")
-        mode = git(self.root, "ls-tree", "HEAD", "--", f"{self.root / path}").stdout.split(" ", 1)[0]
-        if mode == "100755":
-            target.chmod(0o755)
+        """Put the committed file back, at its place or at `to`: its bytes (or link), with its mode."""
+        content = self.committed_content(path)
+        if content is None:
+            return
+        executable = self.committed_mode(path) == "100755"
+        try:
+            if content.kind == "large":  # not held in memory: git writes it
+                files.put_blob(self.root, to or path, self.entries[path].object, executable)
+            else:
+                files.put(self.root, to or path, content, executable)
+        except files.NotWritable as error:
+            self.unwritable.append((to or path, str(error)))
 
     def remove(self, path: str) -> None:
         target = self.root / path
-        if target.is_file():
+        if target.is_file() or target.is_symlink():
             target.unlink()
         for parent in target.relative_to(self.root).parents:
             folder = self.root / parent
-            if not folder.is_dir():
+            if folder.is_symlink() or not folder.is_dir():
                 continue  # gone already (Copier removed what it emptied)
             if folder == self.root or any(folder.iterdir()):
                 break
             folder.rmdir()
 
     def current_files(self) -> set[str]:
-        """Files in the project now that git does not ignore."""
+        """Files (and links) in the project now that git does not ignore."""
         listed = git(self.root, "ls-files", "-z", "--full-name", "--cached", "--others", "--exclude-standard",
                      "--", ".").stdout
         names = {name[len(self.prefix):] for name in listed.split("\0") if name}
-        return {name for name in names if (self.root / name).is_file()}
+        return {name for name in names if (self.root / name).is_symlink() or (self.root / name).is_file()}
+
+    def changed_files(self) -> tuple[set[str], set[str], set[str]]:
+        """(added, changed, removed) since the last commit, as git sees them (its index's file
+        times spare it reading the files nobody touched, large ones included)."""
+        listed = git(self.root, "status", "--porcelain=v1", "-z", "--untracked-files=all", "--no-renames",
+                     "--", ".").stdout
+        added, changed, removed = set(), set(), set()
+        for item in filter(None, listed.split("\0")):
+            status, name = item[:2], item[3:][len(self.prefix):]
+            exists = (self.root / name).is_symlink() or (self.root / name).is_file()
+            if name not in self.committed_files:
+                if exists:
+                    added.add(name)
+            elif not exists:
+                removed.add(name)
+            elif status != "  ":
+                changed.add(name)
+        return added, changed, removed
 
     def resolve_in_index(self, path: str) -> None:
         """Clear a conflict Copier recorded in the index for a file settled here."""

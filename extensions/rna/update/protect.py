@@ -14,6 +14,7 @@ not, and never refreshes a user file (`_skip_if_exists`) once it exists. Here:
 
 from __future__ import annotations
 
+import os
 import posixpath
 
 from .. import layout
@@ -26,9 +27,11 @@ IGNORE_FILES = {1: "CATKIN_IGNORE", 2: "COLCON_IGNORE"}
 
 
 def edited(project: Project, old: Render, path: str) -> bool:
-    """The user changed this file (or made it): its committed text is not what the old version made."""
-    before = project.committed(path)
-    return before is not None and before != old.text(path)
+    """The user changed this file (or made it): what was committed is not what the old version made."""
+    before, generated = project.committed_content(path), old.content(path)
+    if before is None:
+        return False
+    return generated is None or before.data is None or (before.kind, before.data) != (generated.kind, generated.data)
 
 
 def refresh_untouched_starters(project: Project, old: Render, new: Render, user_files: set[str],
@@ -77,7 +80,7 @@ def keep_edited_files(project: Project, old: Render, new: Render, packages: tupl
                       report: Report, skip: set[str] = frozenset()) -> None:
     """Put back each edited file the new answers no longer make (Copier deleted it); `skip`: carried elsewhere."""
     for path in sorted(old.files - new.files - skip):
-        if not edited(project, old, path) or (project.root / path).exists():
+        if not edited(project, old, path) or os.path.lexists(project.root / path):
             continue
         project.restore(path)
         report.kept.append((path, why_gone(path, *packages)))

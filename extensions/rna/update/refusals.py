@@ -7,11 +7,12 @@ rule and what to do instead.
 
 from __future__ import annotations
 
+import subprocess
 from collections.abc import Mapping
 from pathlib import Path
 
-from .. import distros
-from ..answers import AnswerError
+from .. import distros, files
+from ..answers import FIRST_COPY, AnswerError
 
 def switch_error(previous: Mapping, answers: Mapping) -> AnswerError | None:
     """A change from ROS 2 back to ROS 1, which no update makes.
@@ -45,6 +46,50 @@ def port_error(previous: Mapping, answers: Mapping, package_xml: Mapping | None)
         "node (nothing was written)"))
 
 
+def first_copy_error(given: Mapping) -> AnswerError | None:
+    """An update given one of the first copy's ways to the nodes (`-d node_publishers=...`).
+
+    Those questions fill in `nodes` on a first copy; the answers file records `nodes`, and an
+    update changes the nodes there. Taken as given, the answer would change nothing.
+    """
+    question = next((question for question in FIRST_COPY if question in given), None)
+    if question is None:
+        return None
+    return AnswerError(question, (
+        f"{question} is a question of the first copy, which it helps fill in 'nodes'; this package records its "
+        "nodes in 'nodes', so an update changes them there (nothing was written): copier update --trust asks "
+        "for them, or give them all: --data-file nodes.yml, with nodes: [...] as the answers file holds them"))
+
+
+def undecodable_name(project: Path) -> str | None:
+    """The first file in the project (git's view) whose name is not UTF-8, or None."""
+    listed = subprocess.run(["git", "ls-files", "-z", "--cached", "--others", "--exclude-standard"], cwd=project,
+                            capture_output=True, check=False).stdout
+    for name in listed.split(b"\0"):
+        try:
+            name.decode("utf-8")
+        except UnicodeDecodeError:
+            return name.decode("utf-8", "backslashreplace")
+    return None
+
+
+def name_error(name: str) -> str:
+    """Copier's update fails half-way on a file name that is not UTF-8 (it has written the new
+    version by then); the template stops it first."""
+    return (f"the file {name} has a name that is not UTF-8, on which copier update fails half-way (nothing was "
+            "written): rename it (git mv, to a UTF-8 name), commit, and update again")
+
+
+def copy_over_error(answers_file: str) -> str:
+    """`copier recopy`, or `copier copy`, into a package the template made (its answers file is
+    there): Copier renders the package afresh over the user's files, without the update's
+    merge, and replaces the lines the user added to the files the template shares with them."""
+    return (f"this folder holds a package the template made ({answers_file}): copier recopy and copier copy render "
+            "it afresh over your files and would replace the lines you added to package.xml, the build files, "
+            "the launch and config files and the README (nothing was written). Use copier update --trust, which "
+            "merges them; to start again from the answers, copy into an empty folder and move your code across")
+
+
 def hand_edit_error(answers_file: str) -> str:
     """The answers file was edited by hand (resolve.edited_by_hand): Copier would take the
     edited answers for the package's old ones, render nothing new and exit 0."""
@@ -67,11 +112,10 @@ def take_over_error(package, previous: Mapping, destination: Path) -> AnswerErro
         if node.name in before:
             continue
         path = Path(package.dir) / node.user_file
-        try:
-            text = (destination / path).read_text(encoding="utf-8", errors="replace")
-        except OSError:
+        content = files.read(destination, str(path))
+        if content is None:
             continue
-        if node.base_class_name not in text:
+        if node.base_class_name not in (content.text or ""):
             return AnswerError("nodes", (
                 f"node '{node.name}': {path} is already in the package and does not build on "
                 f"{node.base_class_name}, so the new node would take over your file (nothing was written). "

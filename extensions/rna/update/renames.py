@@ -144,7 +144,8 @@ def _carry_user_file(project, old, new, packages, old_node: Node, new_node: Node
     if package_names:
         text = package_renamed_text(text, package_names, _suffix(target))
     project.restore(source, to=target)  # with its mode: an executable script stays one
-    project.write(target, text)
+    if not project.write(target, text, like=source):
+        return set()
     project.remove(source)
     report.renamed.append((source, target))
     return {source, target}
@@ -160,9 +161,8 @@ def _carry_config(project, old, new, packages, old_node: Node, new_node: Node, r
     descriptions = (config_merge.descriptions_of(packages[0], source),
                     config_merge.descriptions_of(packages[1], target))
     merged = config_merge.merge(generated, mine, fresh, descriptions)
-    if merged is None:
+    if merged is None or not config_merge.write_merged(project, target, merged):
         return set()  # not YAML the merge reads: kept where it was and named (protect.py)
-    config_merge.write_merged(project, target, merged)
     project.remove(source)
     if (project.root / f"{source}.rej").exists():  # Copier's, for the file the rename moves
         project.remove(f"{source}.rej")
@@ -192,7 +192,8 @@ def _rename_in_build_and_launch_files(project, old, new, package: Package, pairs
             continue
         ours, base = renamed_lines(mine, pairs, package.name), renamed_lines(generated, pairs, package.name)
         text, conflicted = merge.merge3(ours, base, fresh)
-        project.write(path, text)
+        if not project.write(path, text):
+            continue
         rejected = project.root / f"{path}.rej"
         if rejected.exists():
             rejected.unlink()
@@ -224,8 +225,7 @@ def _rename_in_moved_files(project, old, packages: tuple[Package, Package], pair
                                        f"'{pairs[name]}': rename it there.")
             continue
         text = renamed_lines(current, pairs, packages[1].name)
-        if text != current:
-            project.write(target, text)
+        if text != current and project.write(target, text):
             report.notes.append(f"{target}: your lines naming {', '.join(sorted(pairs))} now name "
                                 f"{', '.join(pairs[name] for name in sorted(pairs))}.")
         handled.add(target)
@@ -279,7 +279,7 @@ def _suffix(path: str) -> str:
 def _move(project: Project, path: str, target: str) -> bool:
     """Move a file as it is (bytes and mode), unless the target is taken; whether it moved."""
     source, destination = project.root / path, project.root / target
-    if not source.is_file() or destination.exists():
+    if not (source.is_file() or source.is_symlink()) or os.path.lexists(destination):
         return False
     destination.parent.mkdir(parents=True, exist_ok=True)
     os.replace(source, destination)
@@ -301,11 +301,11 @@ def carry_renamed_package(project: Project, old: Render, new: Render, packages: 
             continue
         target = package_path(path, names)
         generated, fresh, suffix = old.text(path), new.text(target), _suffix(path)
-        if generated is None and suffix not in CODE_SUFFIXES:
-            if _move(project, path, target):  # the user's own file, as it is (maps, meshes, notes...)
+        mine = project.committed(path)
+        if generated is None and (suffix not in CODE_SUFFIXES or mine is None):
+            if _move(project, path, target):  # the user's own file, as it is (maps, meshes, notes, links...)
                 handled |= {path, target}
             continue
-        mine = project.committed(path)
         if generated is not None and mine == generated:
             continue  # untouched: Copier made the new one, or no longer makes it
         if generated is not None and fresh is None:
@@ -318,7 +318,8 @@ def carry_renamed_package(project: Project, old: Render, new: Render, packages: 
         else:
             text, conflicted = merge.merge3(ours, package_renamed_text(generated, names, suffix), fresh)
         project.restore(path, to=target)  # with its mode
-        project.write(target, text)
+        if not project.write(target, text, like=path):
+            continue
         project.remove(path)
         if (project.root / f"{path}.rej").exists():
             project.remove(f"{path}.rej")

@@ -11,6 +11,11 @@ Python nodes turned C++. So:
   and `--data nodes=...` written as the docs show mean what they meant
   (`keep_languages()`); a new node gets the build type's default.
 
+The one-node questions of a first copy (rna.answers.FIRST_COPY) are not recorded: `nodes`
+holds what they made (and `node_setup` how they were made), and an update
+changes the nodes there (refusals.first_copy_error), so the file never says one thing in
+`node_publishers` and another in `nodes`.
+
 The answers file also records a checksum of its answers (`checksum()`): Copier renders
 the old version from that file, so answers edited there by hand would be taken for the
 package's old answers and the update would change nothing; `edited_by_hand()` tells.
@@ -26,6 +31,7 @@ from collections.abc import Mapping
 import yaml
 
 from .. import distros
+from ..answers import FIRST_COPY
 from ..answers.nodes import normalised_nodes
 
 RENAMED_FROM = "renamed_from"  # a node's old name, during the update that renames it (rename_answers.py)
@@ -58,9 +64,10 @@ def languages(answers: Mapping) -> dict[str, str]:
 
 
 def resolved(answers: Mapping) -> dict:
-    """The answers to record: every node a mapping with its language written out, and its
-    endpoints' types spelled as the package's ROS generation spells them."""
-    recorded = dict(answers)
+    """The answers to record: every node a mapping with its language written out, its
+    endpoints' types spelled as the package's ROS generation spells them, and not the first
+    copy's ways to the nodes."""
+    recorded = {key: value for key, value in answers.items() if key not in FIRST_COPY}
     nodes = recorded.get("nodes")
     if isinstance(nodes, list):
         nodes = recorded["nodes"] = normalised_nodes(nodes, distros.generation(recorded.get("ros_distro")))

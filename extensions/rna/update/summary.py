@@ -2,8 +2,10 @@
 
 Each step of the after-update work records what it did in a `Report`; `summary()` adds
 what git shows (files added, updated, merged, removed) and writes a short text for an
-80-column terminal. The update fails (exit 1) when the report holds anything the user
-must act on: a conflict, an edited file the answers no longer make, code to port.
+80-column terminal. The step exits 1 when the report holds anything the user must act
+on (a conflict, an edited file the answers no longer make, code to port, a change it
+could not write), and its last line says the update is done all the same: Copier then
+prints that its task "returned non-zero exit status 1" and exits 1.
 """
 
 from __future__ import annotations
@@ -33,6 +35,7 @@ class Report:
     problems: list[str] = field(default_factory=list)  # other things the user must do, one line each
     notes: list[str] = field(default_factory=list)  # said, nothing to do
     merged: set[str] = field(default_factory=set)  # files this step merged itself
+    unwritable: list[tuple[str, str]] = field(default_factory=list)  # (path, why) a change could not be written
     ported: list[Ported] = field(default_factory=list)  # files a port to ROS 2 rewrote (rna/update/port.py)
 
     @property
@@ -40,8 +43,15 @@ class Report:
         return sum(item.todos for item in self.ported)
 
     @property
+    def items(self) -> int:
+        """How many things the user must do before committing."""
+        return (len(self.kept) + len(self.to_port) + len(self.conflicts) + len(self.problems) + len(self.unwritable)
+                + self.todos)
+
+    @property
     def failed(self) -> bool:
-        return bool(self.kept or self.to_port or self.conflicts or self.problems or self.todos)
+        """Whether the user has items to do (the step then exits 1)."""
+        return self.items > 0
 
 
 @dataclass(frozen=True)
@@ -54,15 +64,11 @@ class Changes:
     removed: list[str]
 
 
-def changes(before: dict[str, str], after: dict[str, str], generated_before: dict[str, str | None],
-            ignore: set[str]) -> Changes:
-    """`before`/`after`: path -> text of the project before and after; `generated_before`: the old render."""
-    added = sorted(set(after) - set(before) - ignore)
-    removed = sorted(set(before) - set(after) - ignore)
-    changed = sorted(path for path in set(before) & set(after) - ignore if before[path] != after[path])
-    merged = [path for path in changed if generated_before.get(path) != before[path]]
-    updated = [path for path in changed if path not in merged]
-    return Changes(added, updated, merged, removed)
+def changes(added: set[str], changed: set[str], removed: set[str], edited: set[str], ignore: set[str]) -> Changes:
+    """What git sees changed since the last commit; `edited`: the files the user had edited
+    (their changes are merged with the template's, the others' only updated)."""
+    changed = changed - ignore
+    return Changes(sorted(added - ignore), sorted(changed - edited), sorted(changed & edited), sorted(removed - ignore))
 
 
 def _files_line(label: str, paths: list[str]) -> list[str]:
@@ -120,10 +126,21 @@ def summary(report: Report, change: Changes, versions: str) -> str:
     if report.conflicts:
         lines.append("  conflicts (resolve the '<<<<<<< before updating' blocks or .rej files):")
         lines += [f"    {path}" for path in report.conflicts]
+    if report.unwritable:
+        lines.append("  not written (the template changed them; do it by hand):")
+        for path, why in report.unwritable:
+            lines += _item_lines(path, why)
     for problem in report.problems:
         lines += textwrap.wrap(f"  {problem}", WIDTH, subsequent_indent="    ")
-    if report.failed:
-        lines.append("Review with `git diff HEAD`; commit once the items above are done.")
-    else:
-        lines.append("Review with `git diff HEAD`, then commit.")
+    lines += textwrap.wrap(outcome(report.items), WIDTH)
     return "\n".join(lines)
+
+
+def outcome(items: int) -> str:
+    """The summary's last words: done, or done with items for the user (what exit 1 means here)."""
+    if not items:
+        return "Done. Review with `git diff HEAD`, then commit."
+    which = "it is" if items == 1 else "they are"
+    return (f"Done, with {items} item{'s' if items > 1 else ''} for you (above): review with `git diff HEAD`, and "
+            f"commit once {which} done. copier exits with status 1 to say so; its line \"Task ... returned "
+            "non-zero exit status 1\" below means that, not a failure.")
