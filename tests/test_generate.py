@@ -299,13 +299,15 @@ def test_a_sensor_stream_is_logged_once_a_second(make_package, distro, language,
 def test_rejected_goals_are_warned_once_a_second(make_package, language):
     """The private review ran lifecycle_nodes: the monitor's 20 Hz starter sent a goal on every tick to
     the driver, configured but inactive, and both warned of each rejection, 20 times a second."""
+    fibonacci = "go:test_msgs/action/Fibonacci"
     destination = make_package({"build_type": "ament_cmake", "nodes": [
-        {"name": "server", "language": language, "lifecycle": True, "action_servers": ["go:test_msgs/action/Fibonacci"]},
-        {"name": "client", "language": language, "action_clients": ["go:test_msgs/action/Fibonacci"], "timers": [0.05]}]})
+        {"name": "server", "language": language, "lifecycle": True, "action_servers": [fibonacci]},
+        {"name": "client", "language": language, "action_clients": [fibonacci], "timers": [0.05]}]})
     suffix = "_base.hpp" if language == "cpp" else "_base.py"
     server, client = (next(destination.rglob(f"{name}{suffix}")).read_text() for name in ("server", "client"))
     if language == "cpp":
-        assert 'RCLCPP_WARN_THROTTLE(\n            get_logger(), *get_clock(), 1000, "go goal rejected: the node is not active");' in server
+        assert ('RCLCPP_WARN_THROTTLE(\n            get_logger(), *get_clock(), 1000, '
+                '"go goal rejected: the node is not active");') in server
         assert 'RCLCPP_WARN_THROTTLE(\n        get_logger(), *get_clock(), 1000, "The go goal was rejected");' in client
     else:
         assert "'go goal rejected: the node is not active', throttle_duration_sec=1.0)" in server
