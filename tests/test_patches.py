@@ -132,7 +132,8 @@ def test_copiers_questions_and_choices_wrap_between_words_in_a_narrow_terminal(t
     monkeypatch.delenv(patches.SWITCH, raising=False)
     worker = Worker(src_path=str(template_folder), dst_path=tmp_path, unsafe=True)
     environment = worker.jinja_env  # loads the glue, which turns the patches on
-    monkeypatch.setattr(sys.modules["rna.terminal"], "width", lambda: 39)  # the glue's checkout's
+    # A 40-column terminal, for whichever checkout's rna.terminal the process-wide patch was made with.
+    monkeypatch.setattr(os, "get_terminal_size", lambda *_: os.terminal_size((40, 24)))
     answers = AnswersMap(init=dict(FIXED_ANSWERS))
     asked = 0
 
