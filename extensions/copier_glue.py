@@ -316,7 +316,7 @@ class RnaExtension(ContextHook):
         elif phase == "migrate" and operation == "update":
             copier_run.point_to_kept_renders(context)
         if phase != "render":
-            _check_given_answers(context)
+            _stop(_run.given_answers_refusal(context))
             return
         previous = _run.previous_answers(context)
         # Outside a package's own answers (a copy, or the scratch renders of an update), renames are
@@ -326,8 +326,8 @@ class RnaExtension(ContextHook):
         if renamed is not None:
             raise UserMessageError(f"rna-template: invalid answer to 'nodes': {renamed} (nothing was written)")
         if previous is not None:  # an update: answers were in the destination before this run
-            _refuse_switch(previous, context)
-            _refuse_names_copier_cannot_update(context)
+            _stop(rna.update.refusals.switch_error(previous, context))
+            _stop(_run.undecodable_name_refusal(str(conf.get("dst_path"))))
             _run.keep_languages(context.get("nodes"), previous)
         answers = {key: context.get(key) for key in (*rna.answers.QUESTIONS, "copyright_year")}
         # Whether it is an update is part of the key: Copier renders some names before it
@@ -355,46 +355,6 @@ def _checked_package(context, previous: Mapping | None, answers: dict):
     return package
 
 
-def _check_given_answers(context) -> None:
-    """Answers given with --data or --data-file, checked before Copier reads them.
-
-    Copier checks a choice, or parses a YAML answer, itself when it reaches the question,
-    and a broken one ends in a traceback; this says the same in one line, first. A choice
-    that depends on other answers (a build type for the distro) is checked as soon as they
-    are known: given, in the answers file being updated, or answered before it.
-    """
-    conf = context.get("_copier_conf") or {}
-    given = conf.get("data") or {}
-    previous = _run.previous_answers(context) if given else None
-    if previous is not None:  # an update: before any other answer is read in the light of these
-        if "ros_distro" in given:
-            _refuse_switch(previous, given, conf.get("dst_path"))
-        _stop(rna.update.refusals.first_copy_error(given))
-    if not given:
-        return
-    checked = _run.given_answers_checked(given)
-    if len(checked) == len(given) or _inside_a_validator():
-        return
-    around = {key: context.get(key) for key in ("ros_distro", "build_type") if key in context.keys()}
-    try:
-        checked |= rna.answers.check_given(given, copier_run.question_types(str(conf.get("src_path"))), around,
-                                           skip=checked)
-    except rna.AnswerError as error:
-        raise UserMessageError(f"rna-template: {error}") from None
-
-
-def _inside_a_validator() -> bool:
-    """Whether Copier is rendering a question's validator, which turns any error into a
-    traceback ("Validation error for question ..."): a given answer is checked at the next
-    render instead (the question's own `when` comes before its answer is validated)."""
-    frame = sys._getframe(2)
-    while frame is not None:
-        if frame.f_code.co_name == "validate_answer":
-            return True
-        frame = frame.f_back
-    return False
-
-
 def _refuse_to_copy_over_a_package(context) -> None:
     """`copier recopy` (a copy, to Copier) or `copier copy` into a package this template made
     would replace the user's lines in every file they share with the template: stop first."""
@@ -402,26 +362,6 @@ def _refuse_to_copy_over_a_package(context) -> None:
         return
     name = (context.get("_copier_conf") or {}).get("answers_file")
     raise UserMessageError(f"rna-template: {rna.update.refusals.copy_over_error(name)}")
-
-
-def _refuse_names_copier_cannot_update(context) -> None:
-    """A file of the project whose name is not UTF-8 makes Copier's update fail half-way, after
-    it wrote the new version (copier._tools.normalize_git_path, 9.19): stop before it writes."""
-    destination = str((context.get("_copier_conf") or {}).get("dst_path"))
-    if destination not in _names_checked:
-        _names_checked[destination] = rna.update.refusals.undecodable_name(Path(destination))
-    if _names_checked[destination] is not None:
-        raise UserMessageError(f"rna-template: {rna.update.refusals.name_error(_names_checked[destination])}")
-
-
-_names_checked: dict[str, str | None] = {}
-
-
-def _refuse_switch(previous: Mapping, answers: Mapping, destination: object = None) -> None:
-    refused = rna.update.refusals.switch_error(previous, answers)
-    if refused is None and destination is not None:
-        refused = rna.update.refusals.port_error(previous, answers, rna.workspace.read_package(Path(destination)))
-    _stop(refused)
 
 
 def _stop(refused) -> None:
