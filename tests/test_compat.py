@@ -4,15 +4,17 @@ Pythons users run Copier with (Ubuntu 24.04's 3.12, Debian 13's 3.13).
 
 - Every example answers file renders byte for byte the same with the patches on (a first
   run, then a run that finds the compiled code kept) and off (RNA_TEMPLATE_PATCHES_OFF=all),
-  and so does a sample of the update tier's cases, exit codes and messages included.
+  and six updates of this file's, exit codes and messages included; so does every update of
+  a sample of the update tier's tests (each test, every change of its core scenario), each
+  run off and then on in the project's own folder, before the test checks what it checks.
 - Python 3.12 and 3.13 (tests/support/compat.py finds or installs them, each in an
   environment of the pins) run the whole fast tier, and render every example byte for
   byte as 3.11 does, sharing one code cache folder with it (each Python keeps its own code).
 - The newest Copier, copier-template-extensions, Jinja, questionary and prompt_toolkit the
-  registries offer run the fast tier's generation, prompt and patch tests, this file's
-  on/off comparisons and a sample of the update tier, with every patch on: a release that
-  changes what a patch relies on fails here (its guard turned it off, or the output or the
-  screen differs), before a user meets it.
+  registries offer run the whole fast tier, this file's on/off comparisons and a sample of
+  the update tier (each update compared off and on too), with every patch on: a release
+  that changes what a patch relies on fails here (its guard turned it off, or the output or
+  the screen differs), before a user meets it.
 
 Outside CI a part that cannot set itself up is skipped with the reason; in CI it fails.
 """
@@ -32,7 +34,8 @@ import yaml
 from support import compat
 from support.generation import FIXED_ANSWERS, ROOT, differences, example, examples, subprocess_env, tree
 from support.template_repo import (
-    RELEASES, Flavor, commit_all, find_node, generate_project, git, release_history_repo, replace_text,
+    COMPARE_PATCHES, RELEASES, Flavor, commit_all, find_node, generate_project, git, release_history_repo,
+    replace_text,
 )
 from support.tiers import unavailable
 
@@ -43,13 +46,10 @@ pytestmark = [pytest.mark.compat, pytest.mark.xdist_group("compat")]
 OFF = {"RNA_TEMPLATE_PATCHES_OFF": "all"}
 EXTENSIONS = ROOT / "extensions"
 
-# What the newest libraries run, besides this file's comparisons: the fast tier's tests of
-# generated packages, answers and prompts (a newcomer's replay at a terminal among them), and
-# of the patches themselves; and the update
-# tier's flows that exercise an update's every step (scratch renders kept, a release's glue
-# beside this one's, renames, removals).
-NEWEST_TESTS = ["tests/test_patches.py", "tests/test_examples.py", "tests/test_generate.py",
-                "tests/test_questions.py", "tests/test_add_node.py", "tests/test_replay.py"]
+# What the newest libraries run besides the whole fast tier (the patches' own tests among it, and
+# a newcomer's replay at a terminal): the update tier's flows that exercise an update's every
+# step (scratch renders kept, a release's glue beside this one's, renames, removals), and this
+# file's on/off comparisons.
 UPDATE_SAMPLE = ["tests/test_update.py::test_add_nodes", "tests/test_update.py::test_remove_nodes",
                  "tests/test_update.py::test_an_update_ends_with_a_summary_instead_of_internal_command_lines",
                  "tests/test_merge_safety.py::test_a_renamed_node_carries_the_users_file_values_launch_entry_and_build_lines",
@@ -207,6 +207,38 @@ def test_an_update_does_and_says_the_same_with_the_patches_on_and_off(templates,
     assert differences(on["files"], off["files"]) == []
 
 
+# ─── The update tier's cases, on and off ──────────────────────────────────────
+
+# The update tier's own files (its ROS-built tests aside): each test with its first parameters,
+# and the core scenario with every change the merge-safety figure counts, once each across the
+# flavours (every third of its change x flavour sets).
+UPDATE_TIER = ["tests/test_update.py", "tests/test_merge_safety.py", "tests/test_update_drawn.py",
+               "tests/test_port.py", "tests/test_add_node.py", "tests/test_forks.py"]
+EVERY_CHANGE = "tests/test_merge_safety.py::test_user_lines_survive"
+
+
+def update_tier_sample() -> list[str]:
+    listed = subprocess.run([sys.executable, "-m", "pytest", "--collect-only", "-q", "-p", "no:cacheprovider",
+                             "-m", "update and not ros and not ros1", *UPDATE_TIER], cwd=ROOT,
+                            env=compat.env_of(Path(sys.prefix)), capture_output=True, text=True, check=True).stdout
+    by_test: dict[str, list[str]] = {}
+    for line in listed.splitlines():
+        if "::" in line:
+            by_test.setdefault(line.split("[")[0], []).append(line.strip())
+    return [node for test, nodes in by_test.items() for node in (nodes[::3] if test == EVERY_CHANGE else nodes[:1])]
+
+
+def test_the_update_tiers_cases_do_and_say_the_same_with_the_patches_on_and_off(tmp_path):
+    """Every update of the sample's tests runs with the patches off, then on, in the project's
+    own folder, and must leave the same files, links, modes and git state and print the same
+    (tests/support/template_repo.py, COMPARE_PATCHES); each test then checks what it checks."""
+    sample = update_tier_sample()
+    assert len(sample) >= 50, sample
+    result = compat.pytest_in(Path(sys.prefix), sample, tmp_path / "updates", timeout=1800,
+                              **{COMPARE_PATCHES: "1"})
+    assert result.returncode == 0, f"{result.stdout[-8000:]}\n{result.stderr[-2000:]}"
+
+
 # ─── Other Pythons ────────────────────────────────────────────────────────────
 
 
@@ -260,7 +292,8 @@ def test_the_newest_libraries_run_the_core_tests_with_every_patch_on(tmp_path):
     off = {name: state for name, state in states.items() if state != "on"}
     assert not off, (f"with {found}, these patches' guards turned them off: {off}. Check each against this "
                      "release (tests/test_patches.py, this tier), then widen its guard in extensions/patches/")
-    fast = compat.pytest_in(venv, ["-m", compat.FAST_TIER, *NEWEST_TESTS], tmp_path / "fast", timeout=1800)
+    fast = compat.pytest_in(venv, ["-m", compat.FAST_TIER], tmp_path / "fast", timeout=1800)
     assert fast.returncode == 0, f"with {found}:\n{fast.stdout[-6000:]}\n{fast.stderr[-2000:]}"
-    sample = compat.pytest_in(venv, [*UPDATE_SAMPLE, *COMPARISONS], tmp_path / "sample", timeout=1800)
+    sample = compat.pytest_in(venv, [*UPDATE_SAMPLE, *COMPARISONS], tmp_path / "sample", timeout=1800,
+                              **{COMPARE_PATCHES: "1"})
     assert sample.returncode == 0, f"with {found}:\n{sample.stdout[-6000:]}\n{sample.stderr[-2000:]}"
