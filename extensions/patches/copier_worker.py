@@ -47,10 +47,11 @@ NEEDS: dict[str, str] = {}
 
 
 def install(environment, on) -> None:
-    if on("git_file_mode"):
-        _ask_git_for_the_file_mode_once_per_worker()
-    if on("answers_file_name"):
-        _render_the_answers_file_name_once_per_render()
+    """Both change Copier's Worker class, once per process."""
+    for name, patch in (("git_file_mode", _ask_git_for_the_file_mode_once_per_worker),
+                        ("answers_file_name", _render_the_answers_file_name_once_per_render)):
+        if on(name):
+            patch()
 
 
 # ─── git_file_mode ────────────────────────────────────────────────────────────

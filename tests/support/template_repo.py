@@ -34,6 +34,7 @@ import shutil
 import subprocess
 import sys
 import tarfile
+import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -215,7 +216,8 @@ SCRATCH_NAMES = re.compile(r"(copier\._[a-z]+\.[a-z_]+\.|rna-update-renders-)\w+
 
 
 def _compared_with_the_patches_off(project: Path, command: list[str], timeout: float) -> UpdateResult:
-    held = project.parent / f"{project.name}.before-update"
+    # Held outside the project's folder and its parent: that may be in the same repository.
+    held = Path(tempfile.mkdtemp(prefix="rna-before-update-")) / project.name
     shutil.copytree(project, held, symlinks=True)
     try:
         off = _update(project, command, timeout, RNA_TEMPLATE_PATCHES_OFF="all")
@@ -223,7 +225,7 @@ def _compared_with_the_patches_off(project: Path, command: list[str], timeout: f
         shutil.rmtree(project)
         shutil.copytree(held, project, symlinks=True)
     finally:
-        shutil.rmtree(held, ignore_errors=True)
+        shutil.rmtree(held.parent, ignore_errors=True)
     on = _update(project, command, timeout)
     on_state = project_state(project)
     said = [(name, SCRATCH_NAMES.sub(r"\1*", getattr(on, name)), SCRATCH_NAMES.sub(r"\1*", getattr(off, name)))
