@@ -7,7 +7,7 @@ beside it, imported by its plain name; an update runs the old and the new templa
 in one process, so another checkout's modules are dropped from sys.modules first.
 Everything the template changes in another library's behaviour (Copier's, Jinja's,
 prompt_toolkit's, Python's) is a patch of patches/, switchable; copier_run.py keeps what
-one run found (the answers file, the models).
+one run found (the answers file, the answers given with --data checked, the models).
 """
 
 from __future__ import annotations
