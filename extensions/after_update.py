@@ -104,6 +104,7 @@ def finish(answers_file: str, root: Path, template: Path, renders: str | None, c
         blocks.leave_out_user_declarations(project, new, report)
         blocks.dropped_but_used(project, old, report)
         blocks.unreadable_package_xml(project, report)
+        project.line_ends_as_checked_out()
         added, changed, removed = project.changed_files()
         report.conflicts = conflicts(project, added | changed)
         report.unwritable = list(project.unwritable)

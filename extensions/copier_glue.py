@@ -294,6 +294,7 @@ class RnaExtension(ContextHook):
             python_imports=rna.dialects.python.import_block,
             python_text=rna.dialects.python.text_literal,
             reflow=rna.dialects.lines.reflow,
+            spinning=rna.wording.spinning_text,
             summary=rna.wording.node_summary,
             summary_lines=rna.wording.summary_lines,
             with_article=rna.wording.with_article,

@@ -212,6 +212,47 @@ def test_autostart_is_offered_to_lifecycle_nodes_and_goes_with_lifecycle():
     assert not any("autostart" in choice for choice in script.menus[6])  # no longer one
 
 
+def test_the_executor_callback_groups_and_remappings_are_edited_within_the_rules(monkeypatch):
+    """They have a menu of their own, one entry of the node's menu saying what they are."""
+    monkeypatch.setattr(dialog.terminal, "width", lambda: 79)  # an 80-column terminal
+    script = Script([
+        "Edit server", "Executor,", "Executor:", "multi_threaded", "0", "2",
+        "Add a callback group", "Bad Group", "requests", "reentrant", "nothing", "reset, beat",
+        "Add a remapping", "cmd vel", "beat", "beat", "/robot/beat", "Back",
+        "Done with", "Edit server", "Executor,", "Remove remapping", "Remove callback group",
+        "Executor:", "single_threaded", "Back", "Done with", "Done"])
+    server = {"name": "server", "language": "python", "publishers": ["beat:std_msgs/msg/Int32"],
+              "timers": ["beat:0.05"], "service_servers": ["reset:std_srvs/srv/Trigger"]}
+    edited = dialog.Dialog([dict(server)], rules(), script)
+    nodes = edited.run()
+    assert nodes == [server]
+    assert "Executor, callback groups, remappings: single_threaded" in script.menus[1]
+    assert script.menus[3] == ["single_threaded", "multi_threaded"]  # rclpy has no static executor
+    assert "Executor: multi_threaded, 2 threads" in script.menus[4]  # the node's, once its executor is chosen
+    assert "Executor, groups, remaps: multi_threaded (2 threads), 1 group, 1 remap" in script.menus[8]  # 80 columns
+    after = script.menus[11]  # before anything is removed
+    assert "Remove callback group requests (reentrant): reset, beat" in after
+    assert "Remove remapping beat -> /robot/beat" in after
+    refused = dict(script.refused)
+    assert refused["0"] == "a whole number of threads, 1 or more"
+    assert refused["Bad Group"] == "callback group 'Bad Group': use bad_group: it must be lower_snake_case"
+    assert "'nothing' is none of the node's subscribers, services, actions or timers" in refused["nothing"]
+    assert refused["cmd vel"].startswith("remapped 'cmd vel'")
+    assert refused["beat"] == "node 'server': remappings: 'beat' is remapped to itself"
+
+
+def test_the_executor_is_offered_as_the_language_and_distro_have_it():
+    script = Script(["Edit driver", "Executor,", "Executor:", "static", "Back", "Done with", "Done"])
+    nodes = dialog.Dialog([{"name": "driver", "language": "cpp"}], rules("ament_cmake", "humble"), script).run()
+    assert nodes == [{"name": "driver", "language": "cpp", "executor": "static"}]
+    assert script.menus[3] == ["single_threaded", "multi_threaded", "static"]  # Humble's rclcpp: no events
+    ros1 = dialog.Rules("pkg", "catkin", Types(1, distro="noetic"))
+    script = Script(["Edit talker", "Executor,", "Back", "Done with", "Done"])
+    dialog.Dialog([{"name": "talker", "language": "python"}], ros1, script).run()
+    assert not any("callback group" in choice for menu in script.menus for choice in menu)  # a ROS 2 feature
+    assert "Add a remapping (launch file)" in script.menus[2]
+
+
 def test_ros1_types_and_long_forms_kept():
     """A catkin node names ROS 1 types; endpoints written as mappings stay as they are, and can go."""
     script = Script(["Edit driver", "Edit subscriber", "Remove this", "Add a publisher", "odom", "nav_msgs/Odometr",

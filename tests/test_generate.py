@@ -169,7 +169,8 @@ def test_launch_file_runs_components_standalone_or_in_a_container(make_package):
     assert "`container:=true`" in (destination / "README.md").read_text()
     launch = ET.parse(package / "launch" / "camera_pipeline.launch.xml").getroot()
     args = {arg.get("name"): arg.get("default") for arg in launch.iter("arg")}
-    assert args == {"container": "false", "container_executable": "component_container"}
+    assert args == {"namespace": "", "use_sim_time": "false", "log_level": "info", "container": "false",
+                    "container_executable": "component_container"}
     standalone = {node.get("exec"): node.get("unless") for node in launch.iter("node")}
     assert standalone == {"camera": "$(var container)", "viewer": "$(var container)", "tool": None}
     (container,) = launch.iter("node_container")

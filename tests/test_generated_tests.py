@@ -47,8 +47,17 @@ def resolved(name: str, node: str) -> str:
     return f"/{node}{name[1:]}" if name.startswith("~") else name if name.startswith("/") else f"/{name}"
 
 
-def entries(node, endpoints) -> list[tuple[str, str]]:
-    return [(resolved(getattr(e, "topic", None) or e.name, node.name), e.type.full_name) for e in endpoints]
+def remapped(name: str, node) -> str:
+    """A name as the graph lists it once the launch file's remappings apply (the first that matches)."""
+    name = resolved(name, node.name)
+    return next((resolved(target, node.name) for source, target in node.remappings
+                 if resolved(source, node.name) == name), name)
+
+
+def entries(node, endpoints, launched: bool = False) -> list[tuple[str, str]]:
+    names = [getattr(e, "topic", None) or e.name for e in endpoints]
+    return [(remapped(name, node) if launched else resolved(name, node.name), e.type.full_name)
+            for name, e in zip(names, endpoints, strict=True)]
 
 
 def literals(path: Path) -> dict:
@@ -108,8 +117,8 @@ def test_ros2_tests_name_what_the_answers_give(make_package, variant):
     found = literals(launch_test)
     assert found["NODES"] == [f"/{node.name}" for node in model.nodes]
     up = [node for node in model.nodes if not node.lifecycle or node.autostart]
-    assert found.get("PUBLISHERS", []) == [(n.name, *e) for n in up for e in entries(n, n.publishers)]
-    assert found.get("SERVICES", []) == [(n.name, *e) for n in up for e in entries(n, n.service_servers)]
+    assert found.get("PUBLISHERS", []) == [(n.name, *e) for n in up for e in entries(n, n.publishers, True)]
+    assert found.get("SERVICES", []) == [(n.name, *e) for n in up for e in entries(n, n.service_servers, True)]
     # The launch file it includes is the package's, whatever its format.
     named = [s.value for s in ast.walk(ast.parse(launch_test.read_text()))
              if isinstance(s, ast.Constant) and isinstance(s.value, str) and s.value.startswith("launch/")]
@@ -141,12 +150,16 @@ def test_ros1_tests_name_what_the_answers_give(make_package):
     found = literals(script)
     assert found["NODES"] == [f"/{node.name}" for node in model.nodes]
     def goals(node, actions):
-        return [(f"{name}/goal", f"{type_name}ActionGoal") for name, type_name in entries(node, actions)]
+        return [(f"{name}/goal", f"{type_name}ActionGoal") for name, type_name in entries(node, actions, True)]
 
+    # As the launch file remaps them (the example remaps a topic and an action).
+    assert any(node.remappings for node in model.nodes)
     assert found["PUBLISHERS"] == [(f"/{n.name}", *e) for n in model.nodes
-                                   for e in entries(n, n.publishers) + goals(n, n.action_clients)]
+                                   for e in entries(n, n.publishers, True) + goals(n, n.action_clients)]
     assert found["SUBSCRIPTIONS"] == [(f"/{n.name}", *e) for n in model.nodes
-                                      for e in entries(n, n.subscribers) + goals(n, n.action_servers)]
+                                      for e in entries(n, n.subscribers, True) + goals(n, n.action_servers)]
+    assert ("/monitor", "/base/cmd_vel", "geometry_msgs/Twist") in found["PUBLISHERS"]
+    assert ("/driver", "/fib/goal", "actionlib/TestActionGoal") in found["SUBSCRIPTIONS"]
     block = section_of((package / "CMakeLists.txt").read_text(), "CATKIN_ENABLE_TESTING")
     assert "add_rostest(test/graph.test)" in block and "catkin_add_nosetests(test/test_lint.py)" in block
     assert {"rostest", "python3-nose", "python3-flake8", "python3-catkin-lint"} <= declared_test_depends(package)

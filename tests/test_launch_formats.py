@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import fnmatch
 import re
+import xml.etree.ElementTree as ET
 
 import pytest
 from rna import build_package, launch_features, layout
@@ -37,6 +38,13 @@ MATRIX = {
         {"name": "logger", "language": "python", "parameters": ["rate:double=2.0"]})},
     "many": {"package_name": "fleet", "build_type": "ament_python",
              "nodes": [{"name": f"robot_{number}"} for number in range(7)]},
+    "simulated": {**example("sim_robot"), "ros_distro": "kilted"},
+    # Remapped components on a multi-threaded executor: component_container_mt by default.
+    "threaded_components": {"package_name": "threaded", "build_type": "ament_cmake", "nodes": _nodes(
+        {"name": "camera", "language": "cpp", "component": True, "executor": "multi_threaded",
+         "publishers": ["image:sensor_msgs/msg/Image"], "remappings": {"image": "camera/image_raw"}},
+        {"name": "viewer", "language": "cpp", "component": True, "lifecycle": True, "autostart": True,
+         "subscribers": ["image:sensor_msgs/msg/Image"], "remappings": {"image": "camera/image_raw", "~/x": "/y"}})},
     "humble": {"package_name": "old_robot", "ros_distro": "humble", "build_type": "ament_cmake", "nodes": _nodes(
         {"name": "driver", "language": "cpp", "lifecycle": True, "component": True},
         {"name": "helper", "language": "python"})},
@@ -110,3 +118,34 @@ def test_the_managed_block_holds_every_node_in_each_format(make_package):
         text = next((package / "launch").iterdir()).read_text()
         block = re.search(r"BEGIN rna-template.*?END rna-template", text, re.S)[0]
         assert all(f"{name}" in block for name in ("camera", "viewer", "planner", "logger", "mixed_container"))
+
+
+def test_launch_arguments_and_remappings_reach_every_node_and_component(make_package):
+    answers = {**MATRIX["threaded_components"], "launch_format": "xml"}
+    launch = description(package_dir(make_package(answers)) / "launch" / "threaded.launch.xml", "jazzy")
+    assert launch["args"] == {"namespace": "", "use_sim_time": "false", "log_level": "info", "container": "false",
+                              "container_executable": "component_container_mt"}
+    (container,) = launch["containers"]
+    everything = [*launch["nodes"], *container["nodes"]]
+    assert all(entry["namespace"] == "$(var namespace)" for entry in [*everything, container])
+    assert all(("use_sim_time", "$(var use_sim_time)") in entry["params"] for entry in [*everything, container])
+    assert all(entry["ros_args"] == "--log-level $(var log_level)" for entry in [*launch["nodes"], container])
+    remaps = {entry["name"]: entry["remaps"] for entry in everything}
+    assert remaps == {"camera": (("image", "camera/image_raw"),),
+                      "viewer": (("image", "camera/image_raw"), ("~/x", "/y"))}
+
+
+def test_ros1_launch_file_takes_a_namespace_simulated_time_and_remappings(make_package):
+    answers = {"package_name": "rover", "ros_distro": "noetic", "nodes": [
+        {"name": "driver", "language": "cpp", "publishers": ["cmd_vel:geometry_msgs/msg/Twist"],
+         "remappings": {"cmd_vel": "base/cmd_vel"}},
+        {"name": "monitor", "language": "python"}]}
+    launch = ET.parse(package_dir(make_package(answers)) / "launch" / "rover.launch").getroot()
+    assert {arg.get("name"): arg.get("default") for arg in launch.iter("arg")} == {"namespace": "/",
+                                                                                    "use_sim_time": "false"}
+    (sim_time,) = [param for param in launch.findall("param")]
+    assert (sim_time.get("name"), sim_time.get("value")) == ("/use_sim_time", "$(arg use_sim_time)")
+    nodes = {node.get("name"): node for node in launch.iter("node")}
+    assert all(node.get("ns") == "$(arg namespace)" for node in nodes.values())
+    assert [(r.get("from"), r.get("to")) for r in nodes["driver"].iter("remap")] == [("cmd_vel", "base/cmd_vel")]
+    assert not list(nodes["monitor"].iter("remap"))

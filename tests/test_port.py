@@ -26,7 +26,7 @@ from support import existing_packages  # noqa: E402
 from support.generation import add_node  # noqa: E402
 from support.strategies import valid_answers  # noqa: E402
 from support.template_repo import (  # noqa: E402
-    NEW_VERSION, commit_all, generate_project, git, run_update, tree_differences, user_answers,
+    NEW_VERSION, commit_all, generate_project, git, replace_text, run_update, tree_differences, user_answers,
 )
 
 pytest_plugins = ("support.template_repo",)
@@ -195,3 +195,77 @@ def test_a_node_in_a_package_the_template_did_not_make_is_ported_once_the_packag
     assert "hand_talker" in cmake_text, "the user's own lines went"
     assert "ros__parameters" in (package / "config" / "listener.yaml").read_text()
     shutil.rmtree(package)
+
+
+ROVER = {"package_name": "rover", "ros_distro": "noetic",
+         "nodes": [{"name": "driver", "language": "cpp", "publishers": ["odom:std_msgs/msg/String"], "timers": [0.5]},
+                   {"name": "monitor", "language": "python", "subscribers": ["odom:std_msgs/msg/String"]}]}
+
+
+def rover_with_user_lines(template, destination: Path) -> Path:
+    """A catkin package whose user lines name its nodes: in CMakeLists.txt, the launch file, the C++ node."""
+    project = generate_project(template, destination, ROVER)
+    package = project / "rover"
+    replace_text(package / "CMakeLists.txt", "# END rna-template: add your own targets below\n",
+                 "# END rna-template: add your own targets below\n"
+                 "target_compile_definitions(${PROJECT_NAME}_driver PRIVATE ROVER_WHEELS=4)\n")
+    replace_text(package / "launch" / "rover.launch", "  <!-- END rna-template: add your own nodes below -->\n",
+                 "  <!-- END rna-template: add your own nodes below -->\n"
+                 '  <node pkg="rover" type="driver" name="spare_driver"/>\n'
+                 '  <node pkg="rover" type="monitor.py" name="spare_monitor"/>\n')
+    replace_text(package / "src" / "driver.cpp", "    ++count_;\n",
+                 '    ++count_;\n    ROS_WARN("count %zu", count_);\n')
+    commit_all(project, "my lines")
+    return project
+
+
+def test_nodes_renamed_in_the_port_take_the_users_lines_naming_them_along(current_template, tmp_path):
+    project = rover_with_user_lines(current_template, tmp_path / "rover")
+    nodes = [{**ROVER["nodes"][0], "name": "pilot", "renamed_from": "driver"},
+             {**ROVER["nodes"][1], "name": "watcher", "renamed_from": "monitor"}]
+
+    result = run_update(project, {"ros_distro": PORT_TO, "nodes": nodes}, vcs_ref="HEAD")
+
+    assert result.returncode == 0, result
+    package = project / "rover"
+    cmake, launch = (package / "CMakeLists.txt").read_text(), (package / "launch" / "rover.launch.xml").read_text()
+    assert "target_compile_definitions(pilot PRIVATE ROVER_WHEELS=4)" in cmake, cmake
+    assert '<node pkg="rover" exec="pilot" name="spare_driver"/>' in launch, launch
+    assert '<node pkg="rover" exec="watcher" name="spare_monitor"/>' in launch, launch
+    assert "driver" not in cmake and "monitor" not in cmake.replace("spare_monitor", ""), cmake
+    code = (package / "src" / "pilot.cpp").read_text()
+    assert "class Pilot : public PilotBase" in code and 'RCLCPP_WARN(get_logger(), "count %zu", count_);' in code
+    assert "Driver" not in code and not (package / "src" / "driver.cpp").exists(), code
+    assert "naming driver, monitor name pilot, watcher" in " ".join(result.stdout.split()), result
+
+
+@pytest.mark.parametrize("conflict", ["inline", "rej"])
+def test_a_ported_node_file_in_conflict_is_left_as_the_conflict_option_says(current_template, tmp_path, conflict):
+    project = rover_with_user_lines(current_template, tmp_path / "rover")
+    node = project / "rover" / "src" / "driver.cpp"
+    replace_text(node, "  ros::spin();\n", '  ROS_INFO("spinning");\n  ros::spin();\n')  # main() is the template's
+    commit_all(project, "main() of mine")
+
+    result = run_update(project, {"ros_distro": PORT_TO}, vcs_ref="HEAD", extra_args=("--conflict", conflict))
+
+    assert result.returncode == 1, result
+    code = node.read_text()
+    rejected = node.with_name("driver.cpp.rej")
+    if conflict == "rej":
+        assert "<<<<<<<" not in code and 'RCLCPP_INFO(rclcpp::get_logger("driver"), "spinning");' in code, code
+        assert "+  rclcpp::spin(node);" in rejected.read_text() and "rover/src/driver.cpp.rej" in result.stdout
+    else:
+        assert "<<<<<<< before updating" in code and "rclcpp::spin(node);" in code and not rejected.exists(), code
+    assert "each TODO(port) is an item for you" in result.stdout, result
+    assert "review with `git add -A . && git diff --staged -M HEAD`" in " ".join(result.stdout.split()), result
+
+
+def test_a_port_that_renames_the_package_is_refused_in_one_line(current_template, tmp_path):
+    """The package moves in an update of its own: with the port, the user's own files would stay behind."""
+    project = rover_with_user_lines(current_template, tmp_path / "rover")
+    head = git("rev-parse", "HEAD", cwd=project).stdout
+
+    result = run_update(project, {"ros_distro": PORT_TO, "package_name": "rover2"}, vcs_ref="HEAD")
+
+    refusal = refused_in_one_line(result, project, head)
+    assert "'package_name'" in refusal and "in an update of its own" in refusal, refusal

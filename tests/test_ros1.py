@@ -10,6 +10,9 @@ from __future__ import annotations
 
 import contextlib
 import random
+import re
+import subprocess
+import time
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -111,6 +114,8 @@ def catkin_ws(ros1, template_dir, tmp_path_factory) -> CatkinWorkspace:
     generate(template_dir, path / "src" / "tracker", TRACKER)
     generate(template_dir, path / "src" / "tracker_same", TRACKER_SAME)
     generate(template_dir, path / "src" / "diagnosed", DIAGNOSED)
+    generate(template_dir, path / "src" / "long_goals", LONG_GOALS)
+    _make_goals_long(path / "src" / "long_goals")
     # A C++ node added to a catkin package written by hand.
     add_node(template_dir, existing_packages.catkin(path / "src" / "hand_rover"),
              {"node_name": "listener", "node_subscribers": "chatter:std_msgs/msg/String"})
@@ -181,6 +186,53 @@ def test_diagnostics_reach_another_process(catkin_ws):
             for process in nodes:
                 assert_clean_exit(process, process.interrupt())
             echo.interrupt()
+
+
+LONG_GOALS = {"package_name": "long_goals", "ros_distro": "noetic", "description": "Goals that run for a while",
+              "nodes": [_node(role, language, **endpoints) for language in ("cpp", "python") for role, endpoints in (
+                  ("action_server", {"action_servers": ["count:actionlib/action/Test"]}),
+                  ("stubborn_server", {"action_servers": ["count:actionlib/action/Test"]}),
+                  ("action_client", {"action_clients": ["count:actionlib/action/Test"], "timers": [0.2]}))]}
+
+
+def _make_goals_long(destination: Path) -> None:
+    """Edit the servers' own files as a user would: goals of 30 s; the stubborn servers' goals
+    look at ros::ok() / rospy.is_shutdown() only, not at preemption."""
+    sources = destination / "long_goals"
+    edits = {"src/cpp_action_server.cpp": [("step < 3;", "step < 300;")],
+             "scripts/py_action_server.py": [("range(3)", "range(300)")],
+             "src/cpp_stubborn_server.cpp": [("step < 3;", "step < 300;"),
+                                             ("server.isPreemptRequested() || !ros::ok()", "!ros::ok()")],
+             "scripts/py_stubborn_server.py": [("range(3)", "range(300)"),
+                                               ("server.is_preempt_requested() or rospy.is_shutdown()",
+                                                "rospy.is_shutdown()")]}
+    for name, replacements in edits.items():
+        path = sources / name
+        text = path.read_text()
+        for old, new in replacements:
+            assert text.count(old) == 1, f"the starter code of {name} changed: no {old!r}"
+            text = text.replace(old, new)
+        path.write_text(text)
+
+
+@pytest.mark.parametrize("client", ["cpp_action_client", "py_action_client"])
+@pytest.mark.parametrize(("server", "ending"), [
+    ("cpp_action_server", "PREEMPTED"), ("py_action_server", "PREEMPTED"),
+    ("cpp_stubborn_server", "ABORTED"), ("py_stubborn_server", "ABORTED")])
+def test_a_goal_running_when_its_server_stops_ends_for_the_client(catkin_ws, server, ending, client):
+    """Ctrl-C mid-goal: the goal is preempted while the server can still send the result (as
+    actionlib's tutorial ends a goal when ROS stops), aborted if it ignores that for a second;
+    the client hears how it ended instead of waiting forever, and the server exits cleanly."""
+    logs = catkin_ws.logs / f"goal_stop_{server}_{client}"
+    with catkin_ws.network(f"goal_stop_{server}_{client}") as (prefix, env):
+        server_process = catkin_ws.node(prefix, env, "long_goals", server, log=logs / "server.log")
+        client_process = catkin_ws.node(prefix, env, "long_goals", client, log=logs / "client.log")
+        with started(server_process, client_process):
+            client_process.wait_for("Feedback on the count goal", timeout=30)
+            assert_clean_exit(server_process, server_process.interrupt())
+            status = {"PREEMPTED": 2, "ABORTED": 4}[ending]
+            client_process.wait_for(rf"The count goal ended (as {ending}|with status {status})", timeout=5)
+            assert_clean_exit(client_process, client_process.interrupt())
 
 
 def test_node_added_to_a_hand_written_package_runs(catkin_ws):
@@ -296,6 +348,39 @@ def test_launch_file_starts_every_node_with_its_config(catkin_ws):
             launch.wait_for(r"rate: 2\.5", timeout=30)  # the value tuned in config/talker.yaml
             launch.wait_for(r'I heard: "Hello World: \d+"', timeout=30)
             assert_clean_exit(launch, launch.interrupt(timeout=30))
+
+
+def test_launch_arguments_reach_every_node(catkin_ws):
+    """namespace:=robot1 use_sim_time:=true, as roslaunch's summary lists what it starts."""
+    with catkin_ws.network("roslaunch_args") as (prefix, env):
+        launch = NodeProcess([*prefix, "roslaunch", "bringup", "bringup.launch", "namespace:=robot1",
+                              "use_sim_time:=true"], env=env, log_path=catkin_ws.logs / "roslaunch" / "arguments.log")
+        with started(launch):
+            # The talker's own log line (roslaunch's summary lists the parameter before it starts anything).
+            launch.wait_for(r"INFO\].*rate: 2\.5", timeout=30)
+            launch.wait_for(r"process\[robot1/listener-\d+\]: started", timeout=30)
+            # Started is not up: a rospy node stopped while it still imports rospy (seconds on a loaded
+            # machine) prints a KeyboardInterrupt traceback before any of its code runs.
+            wait_until_listed(prefix, env, "/robot1/listener")
+            summary = launch.output
+            assert re.search(r"^ \* /use_sim_time: True$", summary, re.MULTILINE), summary
+            assert re.search(r"^ \* /robot1/talker/rate: 2\.5$", summary, re.MULTILINE), summary
+            nodes = summary.split("NODES", 1)[1]
+            assert re.search(r"^  /robot1/\n    listener \(bringup/listener\.py\)\n    talker \(bringup/talker\)$",
+                             nodes, re.MULTILINE), summary
+            assert_clean_exit(launch, launch.interrupt(timeout=30))
+
+
+def wait_until_listed(prefix: list[str], env: dict, node: str, timeout: float = 30.0) -> None:
+    """Until the master lists `node` (rospy registers in init_node(), with run() holding Ctrl-C)."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        listed = subprocess.run([*prefix, "rosnode", "list"], env=env, capture_output=True, text=True, timeout=30,
+                                check=False).stdout.split()
+        if node in listed:
+            return
+        time.sleep(0.2)
+    raise AssertionError(f"{node} never registered with the master")
 
 
 # Drawn packages (issue 8): how many the default profile draws; HYPOTHESIS_PROFILE=thorough draws more.

@@ -16,12 +16,11 @@ import re
 import signal
 import subprocess
 import warnings
-import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
-from support import existing_packages, interrupts, real_packages
+from support import existing_packages, interrupts, launch_files, real_packages
 from support import ros2 as ros2_support
 from support import drawn as drawing
 from support.drawn import Drawn, check_drawn, code_linters, thorough
@@ -60,6 +59,20 @@ ABORTED = 6  # action_msgs/msg/GoalStatus.STATUS_ABORTED (the test process has n
 # Every kind of Python node, with fast timers so that a SIGINT often lands mid-callback.
 STOPPABLE = example("every_python_node")
 
+# The same server on each executor: a timer publishing every 50 ms, and a service whose
+# answer is made to take a second; the multi-threaded one has the service in a callback group
+# of its own (the timer stays in the node's default group).
+SERVER = {"publishers": ["beat:std_msgs/msg/Int32"], "timers": [0.05],
+          "service_servers": ["reset:std_srvs/srv/Trigger"]}
+EXECUTORS = {"package_name": "busy_executors", "build_type": "ament_python", "nodes": [
+    {"name": "single", **SERVER},
+    {"name": "threaded", **SERVER, "executor": "multi_threaded",
+     "callback_groups": [{"name": "requests", "members": ["reset"]}]}]}
+SLOW_SERVICE = "time.sleep(1.0)  # a slow service\n        self.get_logger().info('Answering a reset request')"
+
+# A simulated robot: its launch file's arguments, remappings, a multi-threaded driver.
+SIM_ROBOT = example("sim_robot")
+
 
 @dataclass
 class Workspace:
@@ -92,7 +105,8 @@ class Workspace:
 
 # The packages of the exchange tests, which run on every distro with wheels (parametrized by
 # `workspace`); the others (stress, hand-written packages) run on the main distro only.
-EXCHANGE_PACKAGES = ("rna_demo", "robot_services", "robot_beacons", "tracker_same", "data_chain", "busy_robot")
+EXCHANGE_PACKAGES = ("rna_demo", "robot_services", "robot_beacons", "tracker_same", "data_chain", "busy_robot",
+                     "busy_executors", "sim_robot")
 ON_EVERY_DISTRO = pytest.mark.parametrize("workspace", ros2_support.DISTROS, indirect=True)
 MAIN_DISTRO, OTHER_DISTROS = ros2_support.DEFAULT_DISTRO, ros2_support.DISTROS[1:]
 
@@ -101,7 +115,8 @@ def build_workspace(ros2: ros2_support.Ros2Environment, template_dir: Path, path
                     names: tuple[str, ...] | None = None) -> Workspace:
     """The packages `names` (all when None), generated for the environment's distro and built."""
     packages = {"rna_demo": None, "robot_services": SERVICES, "robot_beacons": CMAKE_PYTHON, "tracker": TRACKER,
-                "tracker_same": TRACKER_SAME, "stoppable": STOPPABLE, "data_chain": DATA_CHAIN, "busy_robot": BUSY}
+                "tracker_same": TRACKER_SAME, "stoppable": STOPPABLE, "data_chain": DATA_CHAIN, "busy_robot": BUSY,
+                "busy_executors": EXECUTORS, "sim_robot": SIM_ROBOT}
     for name, answers in packages.items():
         if names is None or name in names:
             generate(template_dir, path / "src" / name, {**(answers or {}), "ros_distro": ros2.distro})
@@ -111,6 +126,11 @@ def build_workspace(ros2: ros2_support.Ros2Environment, template_dir: Path, path
         if names is None or name in names:
             user_file = path / "src" / name / name / module
             user_file.write_text(user_file.read_text().replace("for _ in range(3):", f"for _ in range({steps}):"))
+    if names is None or "busy_executors" in names:
+        for name in ("single", "threaded"):
+            server = path / "src" / "busy_executors" / "busy_executors" / "busy_executors" / f"{name}.py"
+            text = server.read_text().replace("self.get_logger().info('Answering a reset request')", SLOW_SERVICE)
+            server.write_text("import time\n" + text)
     if names is None:
         # Nodes added to packages written by hand (an ament_python and an ament_cmake one).
         add_node(template_dir, existing_packages.ament_python(path / "src" / "hand_robot"),
@@ -179,21 +199,62 @@ def test_data_flows_along_a_chain_of_generated_nodes_with_no_code_added(workspac
         stop_all(camera, detector, controller)
 
 
+def launched(workspace: Workspace, package: str, launch_file: str, values: dict | None = None) -> list[NodeProcess]:
+    """The nodes a launch file starts, with the command lines launch_ros gives them (no `ros2 launch` on PyPI):
+    the file read as the suite reads launch files (support/launch_files.py), its arguments' defaults or `values`."""
+    launch = launch_files.description(workspace.share(package) / "launch" / launch_file, workspace.ros2.distro)
+    values = {**launch["args"], **(values or {})}
+    for node in launch["nodes"]:
+        assert node["condition"] is None, node  # every node these packages start is started
+        files = [launch_files.substituted(p, values, workspace.share) for p in node["params"] if isinstance(p, str)]
+        assert all(Path(file).is_file() for file in files), files
+    return [workspace.node(node["pkg"], node["exec"], *launch_files.ros_arguments(node, values, workspace.share),
+                           log=f"launch_{package}_{node['name']}") for node in launch["nodes"]]
+
+
 @ON_EVERY_DISTRO
 def test_launch_file_starts_every_node_with_its_config(workspace):
-    """Run exactly what launch/rna_demo.launch.xml says (no `ros2 launch` on PyPI)."""
-    launch = ET.parse(workspace.share("rna_demo") / "launch" / "rna_demo.launch.xml").getroot()
-    processes = []
-    for entry in launch.iter("node"):
-        params = entry.find("param").get("from")
-        params = params.replace("$(find-pkg-share rna_demo)", str(workspace.share("rna_demo")))
-        assert Path(params).is_file(), params
-        processes.append(workspace.node(entry.get("pkg"), entry.get("exec"), "-r", f"__node:={entry.get('name')}",
-                                        "--params-file", params, log=f"launch_{entry.get('name')}"))
+    """Run what launch/rna_demo.launch.xml says, with its arguments' defaults."""
+    processes = launched(workspace, "rna_demo", "rna_demo.launch.xml")
     assert [Path(p.argv[0]).name for p in processes] == ["talker", "listener"]
     with started(*processes):
         processes[1].wait_for(r'I heard: "Hello World: \d+"')
         stop_all(*processes)
+
+
+@ON_EVERY_DISTRO
+def test_launch_arguments_and_remappings_reach_every_node(workspace):
+    """sim_robot's YAML launch file with namespace:=robot1 use_sim_time:=true log_level:=debug: the driver,
+    in /robot1, publishes on its remapped topic only as simulated time moves; the lidar watcher hears its
+    remapped scan topic; both log at debug level."""
+    processes = launched(workspace, "sim_robot", "sim_robot.launch.yaml",
+                         {"namespace": "robot1", "use_sim_time": "true", "log_level": "debug"})
+    with started(*processes) as (driver, watcher):
+        values = json.loads(workspace.probe("params", "robot1/driver", "use_sim_time", "max_speed"))
+        assert values == {"use_sim_time": True, "max_speed": 0.5}
+        clocked = json.loads(workspace.probe("clocked", "/robot1/diff_drive/cmd_vel", "geometry_msgs/msg/Twist"))
+        assert clocked["before_clock"] == 0 and clocked["with_clock"] >= 5, clocked
+        relayed = json.loads(workspace.probe("relay", "/robot1/lidar/scan", "sensor_msgs/msg/LaserScan",
+                                             "/robot1/obstacle", "std_msgs/msg/Bool"))
+        assert relayed["heard"] > 0, relayed
+        for process in (driver, watcher):
+            assert "[DEBUG]" in process.output, process.tail()
+        stop_all(driver, watcher)
+
+
+@ON_EVERY_DISTRO
+def test_a_slow_service_holds_up_the_timer_on_one_thread_and_not_on_a_multi_threaded_executor(workspace):
+    """The timer's messages timed from another process while the service takes a second to answer."""
+    measured = {}
+    for name in ("single", "threaded"):
+        with started(workspace.node("busy_executors", name)) as (server,):
+            measured[name] = json.loads(workspace.probe("busy_service", "/reset", "/beat"))
+            stop_all(server)
+    assert all(m["service_seconds"] >= 0.95 for m in measured.values()), measured
+    # One thread: the timer waits for the service. Bounds far from the 50 ms period and from the
+    # second of the service, so that a loaded machine fails neither case but a blocked executor does.
+    assert measured["single"]["largest_gap"] > 0.8, measured
+    assert measured["threaded"]["largest_gap"] < 0.5 and measured["threaded"]["messages"] >= 5, measured
 
 
 @ON_EVERY_DISTRO

@@ -44,6 +44,11 @@ def test_every_example_follows_the_schema_and_says_so(validator, name):
     {"nodes": [{"name": "a", "publisher": []}]},
     {"nodes": [{"name": "a", "timers": [0]}]},
     {"nodes": [{"name": "a", "autostart": True}]},
+    {"nodes": [{"name": "a", "executor": "parallel"}]}, {"nodes": [{"name": "a", "threads": 2}]},
+    {"nodes": [{"name": "a", "executor": "multi_threaded", "threads": 0}]},
+    {"nodes": [{"name": "a", "callback_groups": [{"name": "g", "members": []}]}]},
+    {"nodes": [{"name": "a", "callback_groups": [{"name": "g", "type": "shared", "members": ["x"]}]}]},
+    {"nodes": [{"name": "a", "remappings": {"cmd vel": "x"}}]}, {"nodes": [{"name": "a", "remappings": ["a:=b"]}]},
     {"interfaces": {"messages": [{"name": "target", "fields": ["float64 x"]}]}},
     {"unknown_question": 1},
 ])

@@ -24,8 +24,9 @@ from catkin_pkg.package import parse_package
 
 if "support.template_repo" not in sys.modules:  # its asserts explain themselves too
     pytest.register_assert_rewrite("support.template_repo")
-from support.generation import subprocess_env  # noqa: E402
+from support.generation import ROOT, subprocess_env  # noqa: E402
 from support.packages import dependency_names, rna  # noqa: E402
+from support.real_packages import png  # noqa: E402
 from support.template_repo import (  # noqa: E402
     FLAVORS, NEW_VERSION, OLD_VERSION, PACKAGE, RELEASES, Flavor, answers_of, append_after, commit_all,
     conflict_excerpts, conflicted_files, find_node, generate_project, git, kept_of, managed_lines, missing_block,
@@ -228,6 +229,36 @@ def test_the_last_line_says_done_or_done_with_items_and_the_exit_status_follows(
     assert all(len(line) <= 80 for line in last), last
     assert "returned non-zero exit status 1." in result.stderr.rstrip().splitlines()[-1], result
     assert git("status", "--porcelain", cwd=destination).stdout, "the update is done: the package changed"
+
+
+def exit_status_script() -> str:
+    """The script of the grow-a-package page that tells the outcomes of an update apart."""
+    page = (ROOT / "docs" / "pages" / "how-to" / "grow-a-package.md").read_text()
+    return re.search(r"```sh\n(.*?)```", page.split("## What the exit status says")[1], re.S).group(1)
+
+
+@pytest.mark.parametrize("outcome", ["done", "done with items", "failed", "dirty"])
+def test_the_script_of_the_docs_tells_an_updates_outcomes_apart(project, outcome):
+    flavor = Flavor("ament_python")
+    destination = project("ament_python")
+    nodes = flavor.answers["nodes"]
+    data = {"nodes": nodes + [{"name": "planner", "subscribers": ["scan:sensor_msgs/msg/LaserScan"]}]}
+    if outcome == "done with items":
+        edit_user_file(destination, flavor, "logger")
+        commit_all(destination)
+        data = {"nodes": [node for node in nodes if node["name"] != "logger"]}
+    elif outcome == "failed":
+        data = {"build_type": "catkin"}
+    elif outcome == "dirty":
+        (destination / "notes.txt").write_text("not committed\n")
+    (destination.parent / "changes.yml").write_text(yaml.safe_dump(data))
+    result = subprocess.run(["bash", "-c", exit_status_script()], cwd=destination, capture_output=True, text=True,
+                            env={**subprocess_env(), "PATH": f"{Path(sys.executable).parent}:{os.environ['PATH']}"},
+                            stdin=subprocess.DEVNULL, timeout=300)
+    said = {"done": "updated: review and commit", "done with items": "updated, with items for you: see the summary",
+            "failed": "the update failed; nothing changed", "dirty": "commit or stash first"}[outcome]
+    assert result.stdout.splitlines()[-1:] == [said], result.stdout + result.stderr
+    assert result.returncode == (0 if outcome.startswith("done") else 1), result.stdout + result.stderr
 
 
 BROKEN_STEP = """
@@ -454,6 +485,45 @@ def test_a_file_name_that_is_not_utf_8_stops_the_update_before_copier_fails_half
     assert git("status", "--porcelain", cwd=destination).stdout == ""
 
 
+@pytest.mark.parametrize("how", ["gitattributes", "autocrlf"])
+def test_a_checkout_with_crlf_line_ends_keeps_them_through_an_update(project, tmp_path, figure, how):
+    """A .gitattributes asking for CRLF line ends (`* text eol=crlf`), or Windows' git
+    (core.autocrlf=true), has git write text files with CRLF line ends and hold them with LF;
+    Copier writes what it renders or merges with LF. The update leaves every text file it wrote
+    as git would have checked it out, binary ones as they were, and lists only the files whose
+    content changed (not those whose line ends Copier alone turned)."""
+    flavor = Flavor("ament_cmake")
+    committed = project("ament_cmake")
+    image = png(8, 8)
+    (committed / PACKAGE / "doc").mkdir()
+    (committed / PACKAGE / "doc" / "logo.png").write_bytes(image)
+    if how == "gitattributes":
+        (committed / ".gitattributes").write_text("* text=auto eol=crlf\n*.png binary\n")
+    commit_all(committed, "line ends as the lab wants them")
+    destination = tmp_path / "checkout"
+    git("clone", "-q", *(["-c", "core.autocrlf=true"] if how == "autocrlf" else []), str(committed), str(destination),
+        cwd=tmp_path)
+    nodes = flavor.answers["nodes"] + [{"name": "planner", "language": "python",
+                                        "subscribers": ["scan:sensor_msgs/msg/LaserScan"]}]
+
+    result = run_update(destination, {"nodes": nodes})
+
+    figure(result, destination, lost=int((destination / PACKAGE / "doc" / "logo.png").read_bytes() != image))
+    assert_clean_update(result, destination)
+    assert (destination / PACKAGE / "doc" / "logo.png").read_bytes() == image
+    lf_only = [path for path in git("ls-files", "--cached", "--others", "--exclude-standard", cwd=destination
+                                    ).stdout.split() if path != "robot/doc/logo.png"
+               and re.search(rb"(?<!\r)\n", (destination / path).read_bytes())]
+    assert not lf_only, f"files with LF line ends in a CRLF checkout: {lf_only}\n{result}"
+    summary = summary_of(result.output)
+    listed = {path for label in ("added", "updated", "merged") for path in summary.get(label, [])}
+    changed = set(git("diff", "HEAD", "--name-only", cwd=destination).stdout.split()) | set(
+        git("ls-files", "--others", "--exclude-standard", cwd=destination).stdout.split())
+    assert listed == changed - {".copier-answers.yml"}, result
+    assert git("status", "--porcelain", "--untracked-files=no", cwd=destination).stdout.count("\n") == len(
+        set(git("diff", "HEAD", "--name-only", cwd=destination).stdout.split())), "files whose line ends alone changed"
+
+
 # ─── Adding endpoints to existing nodes ───────────────────────────────────────
 
 
@@ -538,6 +608,79 @@ def test_add_every_endpoint_kind_to_existing_nodes(project, current_template, tm
     if not edited:
         assert "on_watchdog(" in (destination / flavor.user_file("monitor")).read_text()
         assert fresh_copy_differences(destination, current_template, tmp_path) == []
+
+
+# ─── Executors, callback groups, remappings ──────────────────────────────────
+
+
+def threaded(flavor: Flavor) -> list[dict]:
+    """The base nodes, the driver on a multi-threaded executor (ROS 2: its odometry in a callback group of its
+    own) and both it and the monitor remapped by the launch file."""
+    nodes = flavor.answers["nodes"]
+    driver, monitor = find_node(nodes, "driver"), find_node(nodes, "monitor")
+    driver.update(executor="multi_threaded", threads=2, remappings={"cmd_vel": "base/cmd_vel"})
+    if not flavor.ros1:
+        driver["callback_groups"] = [{"name": "sensing", "type": "reentrant", "members": ["odom"]}]
+    monitor["remappings"] = {"cmd_vel": "base/cmd_vel", "reset": "/robot/reset"}
+    return nodes
+
+
+EXECUTOR_CODE = {"python": "MultiThreadedExecutor(num_threads=2)",
+                 "cpp": "MultiThreadedExecutor executor(rclcpp::ExecutorOptions(), 2)",
+                 "ros1": "ros::MultiThreadedSpinner spinner(2);"}
+
+
+@pytest.mark.parametrize("edited", [True, False], ids=["edited-user-files", "untouched-user-files"])
+@pytest.mark.parametrize("flavor_name", FLAVORS)
+def test_switching_the_executor_and_adding_remappings_keeps_every_user_line(project, current_template, tmp_path,
+                                                                           flavor_name, edited):
+    """The executor and the callback groups live in the base files, the remappings in the launch file: the
+    user files stay as they are, edited or not (an untouched one equals a fresh copy's)."""
+    flavor = Flavor(flavor_name)
+    destination = project(flavor_name)
+    if edited:
+        for name in ("driver", "monitor"):
+            edit_user_file(destination, flavor, name)
+        commit_all(destination)
+    before = {name: (destination / flavor.user_file(name)).read_text() for name in ("driver", "monitor")}
+
+    result = run_update(destination, {"nodes": threaded(flavor)})
+    assert_clean_update(result, destination)
+
+    for name in ("driver", "monitor"):
+        assert (destination / flavor.user_file(name)).read_text() == before[name], flavor.user_file(name)
+    language = "ros1" if flavor.ros1 else flavor.language("driver")
+    base = (destination / flavor.base_file("driver")).read_text()
+    assert EXECUTOR_CODE[language] in base, base
+    if not flavor.ros1:
+        assert "sensing_callback_group" in base, base
+    launch = (destination / flavor.launch_file).read_text()
+    assert launch.count('<remap from="cmd_vel" to="base/cmd_vel"/>') == 2, launch
+    assert '<remap from="reset" to="/robot/reset"/>' in launch, launch
+    assert not to_port_of(result.output), result
+    if not edited:
+        assert fresh_copy_differences(destination, current_template, tmp_path) == []
+
+
+@pytest.mark.parametrize("flavor_name", ["ament_cmake", "catkin"])
+def test_an_edited_cpp_main_of_an_older_release_is_told_to_spin_on_the_new_executor(project, flavor_name):
+    """0.3.1's C++ main() spun the node itself (rclcpp::spin, ros::spin): it keeps working on one thread, and
+    switched to a multi-threaded executor the update leaves a "to port" note and the new starter beside it."""
+    flavor = Flavor(flavor_name)
+    destination = project(flavor_name, RELEASES[-1])
+    edit_user_file(destination, flavor, "driver")
+    commit_all(destination)
+    user = (destination / flavor.user_file("driver")).read_text()
+    assert "Driver::spin(" not in user  # the older form: rclcpp::spin(node), ros::spin()
+
+    result = run_update(destination, {"nodes": threaded(flavor)}, vcs_ref=NEW_VERSION)
+    assert result.returncode == 1, result
+    assert (destination / flavor.user_file("driver")).read_text() == user
+    notes = to_port_of(result.output)
+    assert list(notes) == [flavor.user_file("driver")], result
+    assert "it spins on a multi-threaded executor now, which main() gets by calling Driver::spin()" in notes[
+        flavor.user_file("driver")], result
+    assert (destination / (flavor.user_file("driver") + ".new-starter")).is_file()
 
 
 # ─── Changing a parameter's default ───────────────────────────────────────────
@@ -737,7 +880,16 @@ def test_upgrade_from_a_release_keeps_user_edits(project, flavor_name, release):
     user_file_before = (destination / flavor.user_file("driver")).read_text()
 
     result = run_update(destination, vcs_ref=NEW_VERSION)
-    assert_clean_update(result, destination)
+    if "CtrlC" in user_file_before:
+        # A Python main() of 0.3 imported the base module's CtrlC, which run() has replaced: the
+        # update stops with a note to port it, the new starter beside it; everything else is done.
+        assert result.returncode == 1, result
+        note = to_port_of(result.output)[flavor.user_file("driver")]
+        assert "no longer has CtrlC, which your code uses: main() is a call of the base module's run() now" in note
+        assert (destination / (flavor.user_file("driver") + ".new-starter")).is_file()
+        assert not conflicted_files(destination), conflict_excerpts(destination)
+    else:
+        assert_clean_update(result, destination)
 
     assert answers_of(destination)["_commit"] == NEW_VERSION
     assert (destination / flavor.user_file("driver")).read_text() == user_file_before

@@ -174,6 +174,12 @@ def test_ros2_to_ros1_is_refused_in_one_line_and_ros1_to_ros2_is_a_port():
     assert refusals.switch_error(ros2, {**ros2, "ros_distro": "humble"}) is None  # another ROS 2 distro
     assert refusals.switch_error(ros2, {**ros2, "build_type": "ament_python"}) is None  # a conversion the update makes
     assert refusals.switch_error({}, ros2) is None and refusals.switch_error({"ros_distro": None}, ros2) is None
+    # a port renames nodes, not the package: that is an update of its own
+    renamed = refusals.switch_error({"ros_distro": "noetic", "package_name": "rover"},
+                                    {"ros_distro": "kilted", "package_name": "rover2"})
+    assert renamed is not None and renamed.question == "package_name" and "\n" not in str(renamed)
+    assert refusals.switch_error({"ros_distro": "noetic", "package_name": "rover"},
+                                 {"ros_distro": "noetic", "package_name": "rover2"}) is None
 
 
 def test_a_node_is_ported_only_once_the_package_around_it_is_ros2():
@@ -401,6 +407,28 @@ def test_a_kept_render_is_taken_only_for_exactly_the_answers_it_was_rendered_fro
     assert kept.pointed(clone) is None
     kept.point(clone, str(folder))
     assert kept.pointed(clone) == str(folder)
+
+
+OLD_PYTHON_BASE = "class DriverBase(Node):\n    pass\n\n\nclass CtrlC:\n    pass\n"
+NEW_PYTHON_BASE = "class DriverBase(Node):\n    pass\n\n\ndef run(make_node, args=None):\n    pass\n"
+
+
+def test_what_an_edited_user_file_must_follow_from_its_base_file():
+    """A name the user's code imports from its base module that the new one lacks; an executor main() misses."""
+    python = {"language": "python"}
+    old, new = robot(**python).nodes[0], robot(**python).nodes[0]
+    main_of_0_3 = "from robot.driver_base import CtrlC, DriverBase\n\ndef main(args=None):\n    ctrl_c = CtrlC()\n"
+    [gone] = drift.base_reasons(old, new, main_of_0_3, OLD_PYTHON_BASE, NEW_PYTHON_BASE)
+    assert gone.startswith("driver_base.py no longer has CtrlC, which your code uses")
+    assert drift.base_reasons(old, new, "run(Driver, args=args)", OLD_PYTHON_BASE, NEW_PYTHON_BASE) == []
+    threaded = robot(**python, executor="multi_threaded").nodes[0]
+    assert drift.base_reasons(old, threaded, "run(Driver, args=args)", NEW_PYTHON_BASE, NEW_PYTHON_BASE) == []
+    cpp, cpp_threaded = robot().nodes[0], robot(executor="multi_threaded", threads=4).nodes[0]
+    spun_itself = "rclcpp::spin(node);"
+    assert drift.base_reasons(cpp, cpp, spun_itself, None, None) == []  # still one thread: it works as it is
+    [executor] = drift.base_reasons(cpp, cpp_threaded, spun_itself, None, None)
+    assert executor == "it spins on a multi-threaded executor now, which main() gets by calling Driver::spin()"
+    assert drift.base_reasons(cpp, cpp_threaded, "robot::Driver::spin(node);", None, None) == []
 
 
 # Values of every parameter type, written as the template writes them (rna.configs.yaml_entry).

@@ -177,3 +177,28 @@ def test_the_last_commit_comes_back_byte_for_byte(tmp_path):
     assert (root / "pkg" / "old.py").read_bytes() == "# café\r\nx = 1\r\n".encode("latin-1")
     assert not project.write("picture.png", "text") and project.unwritable[0][0] == "picture.png"
     assert project.changed_files() == (set(), {"old.py"}, set())
+
+
+@pytest.mark.parametrize(("settings", "crlf"), [
+    ({}, {"a.txt", "sub dir/b.auto"}),
+    ({"core.eol": "crlf"}, {"a.txt", "sub dir/b.auto", "c.text"}),
+    ({"core.autocrlf": "true"}, {"a.txt", "sub dir/b.auto", "c.text", "d.md"}),
+    ({"core.autocrlf": "input"}, {"a.txt", "sub dir/b.auto"}),
+])
+def test_line_ends_as_git_checks_files_out(tmp_path, settings, crlf):
+    """The eol and text attributes first, then core.autocrlf, then core.eol (gitattributes(5))."""
+    _git(tmp_path, "init", "-q")
+    for key, value in settings.items():
+        _git(tmp_path, "config", key, value)
+    (tmp_path / ".gitattributes").write_text("*.txt eol=crlf\n*.auto text=auto eol=crlf\n*.text text\n"
+                                             "*.lf text eol=lf\n*.bin -text\n*.png binary\n")
+    names = ["a.txt", "sub dir/b.auto", "c.text", "d.md", "e.lf", "f.bin", "g.png"]
+    assert files.crlf_on_checkout(tmp_path, names) == crlf
+    for name in names:
+        (tmp_path / name).parent.mkdir(exist_ok=True)
+        (tmp_path / name).write_bytes(b"one\ntwo\n")
+    (tmp_path / "a mixed.txt").write_bytes(b"one\r\ntwo\n")
+    os.symlink("c.text", tmp_path / "link.txt")
+    assert files.as_checked_out(tmp_path, [*names, "a mixed.txt", "link.txt"]) == sorted(crlf)
+    assert {name for name in names if (tmp_path / name).read_bytes() == b"one\r\ntwo\r\n"} == crlf
+    assert (tmp_path / "a mixed.txt").read_bytes() == b"one\r\ntwo\n" and os.readlink(tmp_path / "link.txt") == "c.text"

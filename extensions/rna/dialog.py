@@ -26,6 +26,7 @@ import yaml
 from . import catalogue, distros, names, qos, terminal
 from .answers.nodes import Types, normalised_entry, parse_node
 from .interfaces import InterfaceType, normalised_type
+from .model import CALLBACK_GROUP_TYPES, DEFAULT_EXECUTOR, EXECUTORS
 from .parameters import SCALAR_TYPES
 from .update.resolve import RENAMED_FROM
 
@@ -129,7 +130,10 @@ NODE_SETTINGS = (
 # Kept for the tests and the docs: the yes/no settings by key.
 FLAGS = {setting.key: setting.label for setting in NODE_SETTINGS if not setting.choices}
 BACK = "(empty: back)"  # a name left empty adds nothing
+# Keys of a node besides its endpoints and flags, changed through menu entries of their own.
+CALLBACK_KEYS = ("subscribers", "service_servers", "service_clients", "action_servers", "action_clients", "timers")
 ADD_NODE = "Add a node"
+BACK_TO_NODE = "Back"
 DONE = "Done"
 REMOVE = "Remove it"
 KEEP = "Keep it"
@@ -267,6 +271,25 @@ def node_forms(node: Mapping) -> list[str]:
     summed = f"{total} endpoint{plural}" + (f" and parameter{plural}" if node.get("parameters") else "")
     return [f"{titled}: " + ", ".join(counts), f"{name}: " + ", ".join(counts), f"{titled}: {summed}",
             f"{name}: {summed}", name]
+
+
+def callback_names(node: Mapping) -> list[str]:
+    """The names a callback group's members may be given: the node's endpoints with callbacks, as written."""
+    found = []
+    for key in CALLBACK_KEYS:
+        for entry in node.get(key) or []:
+            text = entry_text(key, entry)
+            found.append(timer_name(entry) if key == "timers" else text.split(":", 1)[0])
+    return found
+
+
+def group_text(group: object) -> str:
+    """A callback group in one line: `requests (reentrant): reset, dock`."""
+    if not isinstance(group, Mapping):
+        return str(group)
+    members = group.get("members")
+    members = ", ".join(map(str, members)) if isinstance(members, list) else str(members)
+    return f"{group.get('name')} ({group.get('type') or 'mutually_exclusive'}): {members}"
 
 
 def node_line(node: Mapping) -> str:
@@ -492,6 +515,8 @@ class Dialog:
                 shown = (value or NO_VALUE) if setting.choices else ("yes" if value else "no")
                 choices.append(fitting([f"{setting.label}: {shown}"], width))
                 actions.append(("setting", setting))
+            choices.append(fitting(self.running_forms(node), width))
+            actions.append(("running", None))
             choices.append(fitting([f"Done with {node['name']}", "Done with this node"], width))
             actions.append(("done", None))
             self.ask.say(f"Node {node_line(node)}")
@@ -511,6 +536,125 @@ class Dialog:
                 self._change(node, "language", self._language(str(node.get("language"))))
             elif action == "setting":
                 self._setting(node, what)
+            elif action == "running":
+                self.edit_running(node)
+
+    def running_forms(self, node: Mapping) -> list[str]:
+        """The node menu's one entry for how the node runs: `Executor, callback groups, remappings: ...`."""
+        executor = node.get("executor") or DEFAULT_EXECUTOR
+        groups, remaps = len(node.get("callback_groups") or []), len(node.get("remappings") or {})
+        said = [executor + (f" ({node['threads']} threads)" if node.get("threads") else "")]
+        if groups:
+            said.append(f"{groups} group{'s' if groups > 1 else ''}")
+        if remaps:
+            said.append(f"{remaps} remap{'s' if remaps > 1 else ''}")
+        ros2 = self.rules.types.ros == 2
+        head, short = (("Executor, callback groups, remappings", "Executor, groups, remaps") if ros2
+                       else ("Executor, remappings", "Executor, remaps"))
+        return [f"{head}: {', '.join(said)}", f"{short}: {', '.join(said)}", f"{head}: {executor}",
+                f"{short}: {executor}", head]
+
+    def edit_running(self, node: dict) -> None:
+        """Its own menu: the executor, callback groups (ROS 2) and the launch file's remappings."""
+        while True:
+            width = choice_width()
+            entries = self.threading_entries(node, width)
+            choices = [label for label, _ in entries] + [BACK_TO_NODE]
+            picked = self.ask.select("Executor, callback groups and remappings", choices, default=BACK_TO_NODE)
+            if picked not in choices[:-1]:
+                return
+            action, what = entries[choices.index(picked)][1]
+            if action == "executor":
+                self.change_executor(node)
+            elif action == "add_group":
+                self.add_callback_group(node)
+            elif action == "add_remapping":
+                self.add_remapping(node)
+            else:
+                self._remove(node, "callback_groups" if action == "remove_group" else "remappings", what)
+
+    def threading_entries(self, node: Mapping, width: int) -> list[tuple[str, tuple]]:
+        """Menu entries for the executor, callback groups (ROS 2) and remappings: (label, action)."""
+        executor = node.get("executor") or DEFAULT_EXECUTOR
+        threads = f", {node['threads']} threads" if node.get("threads") else ""
+        entries = [(f"Executor: {executor}{threads}", ("executor", None))]
+        if self.rules.types.ros == 2:
+            entries.append(("Add a callback group", ("add_group", None)))
+            entries += [(fitting([f"Remove callback group {group_text(group)}", "Remove callback group"
+                                  + (f" {group.get('name')}" if isinstance(group, Mapping) else "")], width),
+                         ("remove_group", index)) for index, group in enumerate(node.get("callback_groups") or [])]
+        entries.append(("Add a remapping (launch file)", ("add_remapping", None)))
+        entries += [(fitting([f"Remove remapping {source} -> {target}", f"Remove remapping {source}"], width),
+                     ("remove_remapping", source))
+                    for source, target in (node.get("remappings") or {}).items()]
+        return entries
+
+    def change_executor(self, node: dict) -> None:
+        """Pick the executor among those the node's language and distro have; a multi-threaded one's threads."""
+        offered = [executor for executor in EXECUTORS
+                   if not self.rules.node_error({**node, "executor": executor, "threads": None})]
+        executor = self.ask.select("Executor the node spins on", offered,
+                                   default=node.get("executor") or DEFAULT_EXECUTOR)
+        if executor not in offered:
+            return
+        threads = None
+        if executor == "multi_threaded":
+            answer = self.ask.text("Threads (empty: one per core)", default=str(node.get("threads") or ""),
+                                   validate=optional(lambda text: None if text.isdigit() and self.rules.node_error(
+                                       {**node, "executor": executor, "threads": int(text)}) is None
+                                       else "a whole number of threads, 1 or more")).strip()
+            threads = int(answer) if answer else None
+        changed = {key: value for key, value in node.items() if key not in ("executor", "threads")}
+        if executor != DEFAULT_EXECUTOR:
+            changed["executor"] = executor
+        if threads:
+            changed["threads"] = threads
+        self._replace(node, changed)
+
+    def add_callback_group(self, node: dict) -> None:
+        """A name, a type, then the members: the node's endpoints with callbacks, comma-separated."""
+        taken = {group.get("name") for group in node.get("callback_groups") or [] if isinstance(group, Mapping)}
+        name = self.ask.text(f"Callback group name {BACK}", validate=optional(
+            lambda answer: names.identifier_error(answer, "callback group")
+            or (f"there is a callback group '{answer}' already" if answer in taken else None))).strip()
+        if not name:
+            return
+        kind = self.ask.select("Its callbacks run", ["mutually_exclusive (one at a time)",
+                                                     "reentrant (side by side)"]).split(" ", 1)[0]
+        if kind not in CALLBACK_GROUP_TYPES:
+            return
+
+        def with_group(answer: str) -> dict:
+            members = [part.strip() for part in answer.split(",") if part.strip()]
+            group = {"name": name, "members": members}
+            if kind != "mutually_exclusive":
+                group["type"] = kind
+            return {**node, "callback_groups": [*(node.get("callback_groups") or []), group]}
+
+        answer = self.ask.text("Its members, comma-separated (e.g. " + ", ".join(callback_names(node)[:2] or ["reset"])
+                               + ")", complete=callback_names(node),
+                               validate=lambda text: self.rules.node_error(with_group(text)))
+        node["callback_groups"] = with_group(answer)["callback_groups"]
+
+    def add_remapping(self, node: dict) -> None:
+        """A name the node uses, then the name the launch file gives it instead."""
+        source = self.ask.text(f"Name to remap {BACK}", complete=[*callback_names(node), *(
+            entry_text("publishers", entry).split(":", 1)[0] for entry in node.get("publishers") or [])],
+            validate=optional(lambda answer: names.topic_name_error(answer, "remapped"))).strip()
+        if not source:
+            return
+        target = self.ask.text(f"Remap {source} to", validate=lambda answer: self.rules.node_error(
+            {**node, "remappings": {**(node.get("remappings") or {}), source: answer.strip()}})).strip()
+        node["remappings"] = {**(node.get("remappings") or {}), source: target}
+
+    @staticmethod
+    def _remove(node: dict, key: str, which: object) -> None:
+        if key == "callback_groups":
+            del node[key][which]
+        else:
+            node[key] = {source: target for source, target in node[key].items() if source != which}
+        if not node[key]:
+            del node[key]
 
     def _setting(self, node: dict, setting: Setting) -> None:
         if not setting.choices:
@@ -525,7 +669,10 @@ class Dialog:
         changed = {**node, key: value}
         if key == "lifecycle" and value is False:
             changed.pop("autostart", None)  # only a lifecycle node is started that way
-        changed = {name: item for name, item in changed.items() if item is not False and item is not None}
+        self._replace(node, {name: item for name, item in changed.items() if item is not False and item is not None})
+
+    def _replace(self, node: dict, changed: dict) -> None:
+        """The node becomes `changed`, unless that breaks a rule: then say which, and keep it."""
         error = self.rules.node_error(changed)
         if error:
             self.ask.say(error)

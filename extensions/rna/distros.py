@@ -27,6 +27,19 @@ LANGUAGE_NAMES = {"cpp": "C++", "python": "Python"}
 DISCOVERY_OFF_DISTROS = ("jazzy", "kilted", "rolling")
 
 
+# Executors beyond the single- and multi-threaded ones, by language, and the distros whose
+# client library has them (read in each branch of ros2/rclcpp and ros2/rclpy):
+# rclcpp::executors::StaticSingleThreadedExecutor is deprecated from rclcpp 29 (Kilted) on, its
+# speed-ups now in SingleThreadedExecutor; rclcpp::experimental::executors::EventsExecutor
+# exists from Jazzy on. rclpy has no static executor, and its experimental EventsExecutor
+# (Jazzy from rclpy 7.1.4, Kilted) ignored SIGINT and SIGTERM when tried with these wheels.
+EXECUTOR_DISTROS = {
+    ("cpp", "static"): ("humble", "jazzy"),
+    ("cpp", "events"): ("jazzy", "kilted", "rolling"),
+}
+THREADS_MAX = 256
+
+
 def generation(distro: object) -> int:
     """1 for a ROS 1 distribution, 2 otherwise."""
     return 1 if distro in ROS1_DISTROS else 2
@@ -58,3 +71,31 @@ def language_error(build_type: str, language: str) -> str | None:
     needs = next(name for name, held in BUILD_TYPES.items() if language in held)
     return (f"an {build_type} package holds {takes} nodes only; choose build_type {needs} "
             f"for {LANGUAGE_NAMES[language]}")
+
+
+def executor_error(executor: str, ros: int, language: str, distro: object = None) -> str | None:
+    """Why a node of this language cannot spin on this executor in this distro, or None."""
+    if executor == "single_threaded":
+        return None
+    if ros == 1:
+        if language == "python":
+            return ("rospy runs each subscription, timer and service callback in a thread of its own: a ROS 1 "
+                    "Python node has no executor to choose (leave executor out)")
+        if executor != "multi_threaded":
+            return (f"executor '{executor}' is a ROS 2 executor: a roscpp node spins single_threaded or "
+                    "multi_threaded (ros::MultiThreadedSpinner)")
+        return None
+    if executor == "multi_threaded":
+        return None
+    if language == "python":
+        if executor == "static":
+            return "rclpy has no static executor (rclcpp's StaticSingleThreadedExecutor): use single_threaded"
+        return ("rclpy's EventsExecutor is experimental, and with Jazzy's and Kilted's rclpy it ignored Ctrl-C and "
+                "SIGTERM when tried: use single_threaded or multi_threaded")
+    have = EXECUTOR_DISTROS[(language, executor)]
+    if distro is None or distro in have:
+        return None
+    if executor == "static":
+        return (f"{distro}'s rclcpp deprecates StaticSingleThreadedExecutor (SingleThreadedExecutor has its "
+                "speed-ups now): use single_threaded")
+    return f"{distro}'s rclcpp has no EventsExecutor ({', '.join(have)} have it, as an experimental executor)"

@@ -50,6 +50,10 @@ def node_features(node) -> frozenset[str]:
         "float_ranges": any(p.range and p.type.scalar == "double" for p in parameters),
         "string_parameters": any(p.type.scalar == "string" for p in parameters),
         "array_parameters": any(p.type.is_array for p in parameters),
+        node.executor: True,  # single_threaded, multi_threaded, static, events
+        "callback_groups": bool(node.callback_groups),
+        "mutually_exclusive_groups": any(g.type == "mutually_exclusive" for g in node.callback_groups),
+        "reentrant_groups": any(g.type == "reentrant" for g in node.callback_groups),
     }
     return frozenset(name for name, used in found.items() if used)
 
@@ -60,6 +64,8 @@ ROS2_CPP = {
                        ("lifecycle_msgs/msg/state.hpp", "rclcpp_lifecycle/lifecycle_node.hpp",
                         "rclcpp_lifecycle/lifecycle_publisher.hpp")),
     "component": Needs(("rclcpp_components",), user=("rclcpp_components/register_node_macro.hpp",)),
+    # spin(): a std::shared_ptr to the node, std::signal to ignore a SIGINT once stopping.
+    "executable": Needs(base=("<csignal>", "<memory>")),
     # The autostart parameter (read-only) and the timer that starts the node once it spins.
     "starts_itself": Needs(("rcl_interfaces",), ("<chrono>", "rcl_interfaces/msg/parameter_descriptor.hpp")),
     # The base class owns the Updater; the user's status task sets a DiagnosticStatus level.
@@ -83,10 +89,13 @@ ROS2_CPP = {
 }
 
 ROS2_PYTHON = {
-    # signal: the base module's CtrlC, which main() uses.
-    "node": Needs(("rclpy",), ("signal",), ("rclpy", "rclpy.executors:ExternalShutdownException",
-                                            "rclpy.executors:SingleThreadedExecutor",
-                                            "rclpy.signals:SignalHandlerOptions")),
+    # What the base module's run() uses: the user's main() calls it.
+    "node": Needs(("rclpy",), ("os", "signal", "threading", "rclpy", "rclpy.executors:ExternalShutdownException",
+                               "rclpy.signals:SignalHandlerOptions")),
+    "mutually_exclusive_groups": Needs(base=("rclpy.callback_groups:MutuallyExclusiveCallbackGroup",)),
+    "single_threaded": Needs(base=("rclpy.executors:SingleThreadedExecutor",)),
+    "multi_threaded": Needs(base=("rclpy.executors:MultiThreadedExecutor",)),
+    "reentrant_groups": Needs(base=("rclpy.callback_groups:ReentrantCallbackGroup",)),
     "plain": Needs(base=("rclpy.node:Node",)),
     "diagnostics": Needs(("diagnostic_msgs", "diagnostic_updater"), ("diagnostic_updater",),
                          ("diagnostic_msgs.msg:DiagnosticStatus",)),
@@ -117,19 +126,24 @@ ROS1_CPP = {
                          ("diagnostic_updater/DiagnosticStatusWrapper.h", "diagnostic_updater/diagnostic_updater.h"),
                          ("diagnostic_msgs/DiagnosticStatus.h", "diagnostic_updater/DiagnosticStatusWrapper.h")),
     "actions": Needs(("actionlib", "actionlib_msgs")),
-    "action_servers": Needs(base=("actionlib/server/simple_action_server.h",)),
+    # Ctrl-C ends running goals before ROS shuts down: a SIGINT handler, and a cancel of the
+    # server's own goals (the base class's stop_running_goals()).
+    "action_servers": Needs(base=("<csignal>", "actionlib/server/simple_action_server.h", "actionlib_msgs/GoalID.h")),
     "action_clients": Needs(base=("actionlib/client/simple_action_client.h",)),
     "string_parameters": Needs(base=("<string>",)),
     "array_parameters": Needs(base=("<vector>",)),
 }
 
 ROS1_PYTHON = {
-    "node": Needs(("rospy",), user=("rospy", "signal")),  # signal: main() holds Ctrl-C in start-up
+    # The base module's run(), which holds Ctrl-C in start-up (rna.dialects.ros1_python adds
+    # rospy to the user's file when its starter code logs).
+    "node": Needs(("rospy",), ("rospy", "signal")),
     "rospy_wiring": Needs(base=("rospy",)),
     "diagnostics": Needs(("diagnostic_msgs", "diagnostic_updater"), ("diagnostic_updater",),
                          ("diagnostic_msgs.msg:DiagnosticStatus",)),
     "actions": Needs(("actionlib", "actionlib_msgs")),
-    "action_servers": Needs(base=("actionlib:SimpleActionServer",)),
+    # time: a running goal gets a second to end when the node stops (_stop_action_server).
+    "action_servers": Needs(base=("time", "actionlib:SimpleActionServer")),
     "action_clients": Needs(base=("actionlib:SimpleActionClient",), user=("actionlib_msgs.msg:GoalStatus",)),
 }
 

@@ -208,3 +208,61 @@ def put_blob(root: Path, path: str, name: str, executable: bool = False) -> None
         subprocess.run(["git", "cat-file", "blob", name], cwd=root, stdout=out, check=True)
     if executable:
         file.chmod(file.stat().st_mode | 0o111)
+
+
+# --- line ends as git writes files out (a .gitattributes `eol=crlf`, core.autocrlf on Windows)
+
+
+def _git_setting(root: Path, key: str) -> str:
+    return subprocess.run(["git", "config", "--get", key], cwd=root, capture_output=True, text=True,
+                          check=False).stdout.strip().lower()
+
+
+def crlf_on_checkout(root: Path, paths: list[str]) -> set[str]:
+    """Those of `paths` (text files) git writes with CRLF line ends when it checks them out:
+    the `eol` and `text` attributes, then core.autocrlf and core.eol (gitattributes(5)). In such
+    a checkout git holds the files with LF line ends, so Copier's new version of a file comes
+    with LF line ends; the update writes them as git would have."""
+    if not paths:
+        return set()
+    autocrlf = _git_setting(root, "core.autocrlf")
+    autocrlf = "true" if autocrlf in ("true", "yes", "on", "1") else autocrlf
+    text_eol = "crlf" if autocrlf == "true" else "lf" if autocrlf == "input" else _git_setting(root, "core.eol")
+    listed = subprocess.run(["git", "check-attr", "-z", "--stdin", "text", "eol"], cwd=root, capture_output=True,
+                            input=b"".join(os.fsencode(path) + b"\0" for path in paths), check=False).stdout
+    fields = [os.fsdecode(field) for field in listed.split(b"\0")]
+    attributes: dict[str, dict[str, str]] = {}
+    for path, attribute, value in zip(fields[0::3], fields[1::3], fields[2::3], strict=False):
+        attributes.setdefault(path, {})[attribute] = value
+    crlf = set()
+    for path in paths:
+        text, eol = attributes.get(path, {}).get("text", "unspecified"), attributes.get(path, {}).get("eol")
+        if text == "unset":  # -text, binary: written as it is
+            continue
+        if eol in ("crlf", "lf"):  # an eol attribute makes the file text, whatever the settings
+            wanted = eol
+        elif text in ("set", "auto") or autocrlf == "true":
+            wanted = text_eol
+        else:
+            continue
+        if wanted == "crlf":
+            crlf.add(path)
+    return crlf
+
+
+def as_checked_out(root: Path, paths: list[str]) -> list[str]:
+    """Give the text files among `paths` that hold only LF line ends the CRLF ones git would
+    check them out with (crlf_on_checkout); the files rewritten."""
+    rewritten = []
+    for path in sorted(crlf_on_checkout(root, paths)):
+        content = read(root, path)
+        if content is None or content.kind != "text" or "\r" in content.text or "\n" not in content.text \
+                or content.newline != "\n":
+            continue
+        try:
+            write(root, path, content.text, like=Content("text", encoding=content.encoding, bom=content.bom,
+                                                         newline="\r\n"))
+        except NotWritable:
+            continue
+        rewritten.append(path)
+    return rewritten

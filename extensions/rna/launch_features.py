@@ -40,6 +40,7 @@ FRONTEND = {
     "node_container": _NODE | {"composable_node"},
     "composable_node": {"pkg", "plugin", "name", "namespace", "param", "remap", "extra_arg", "if", "unless"},
     "param": {"from", "name", "value"},
+    "remap": {"from", "to"},
     "extra_arg": {"name", "value"},
 }
 # Names a Python launch file may use: the module that exports each, and its keyword arguments.

@@ -31,6 +31,29 @@ DIAGNOSTICS_TASK = "on_diagnostics"
 
 
 @dataclass(frozen=True)
+class LaunchArgument:
+    """An argument of the package's launch file, applied to every node it starts."""
+
+    name: str
+    default: str
+    description: str
+
+
+# ROS 2 launch files (launch_ros's Node, LifecycleNode, ComposableNode take each); ROS 1's take the
+# first two (roslaunch has no per-node log level).
+LAUNCH_ARGUMENTS = (
+    LaunchArgument("namespace", "", "The namespace of every node, e.g. robot1 (none by default)"),
+    LaunchArgument("use_sim_time", "false", "true: every node follows the simulated clock on /clock (Gazebo)"),
+    LaunchArgument("log_level", "info", "The nodes' log level: debug, info, warn, error or fatal"),
+)
+# roslaunch refuses an empty `ns`: the root namespace is '/'.
+ROS1_LAUNCH_ARGUMENTS = (
+    LaunchArgument("namespace", "/", "The namespace of every node, e.g. robot1 (the root one, /, by default)"),
+    LAUNCH_ARGUMENTS[1],
+)
+
+
+@dataclass(frozen=True)
 class Topic:
     """A publisher or a subscription."""
 
@@ -160,6 +183,30 @@ class Timer:
         return f"timer '{self.id}'"
 
 
+# The executors a node may spin on (rna.distros.executor_error says where each exists).
+EXECUTORS = ("single_threaded", "multi_threaded", "static", "events")
+DEFAULT_EXECUTOR = "single_threaded"
+CALLBACK_GROUP_TYPES = ("mutually_exclusive", "reentrant")
+
+
+@dataclass(frozen=True)
+class CallbackGroup:
+    """Endpoints whose callbacks a multi-threaded executor runs one at a time (mutually
+    exclusive) or side by side (reentrant), apart from the node's default group."""
+
+    name: str
+    type: str  # one of CALLBACK_GROUP_TYPES
+    members: tuple = ()  # the node's subscriptions, servers, clients and timers in it
+
+    @property
+    def member(self) -> str:
+        return names.with_suffix(self.name, "callback_group")
+
+    @property
+    def label(self) -> str:
+        return f"callback group '{self.name}'"
+
+
 @dataclass(frozen=True)
 class Node:
     """One node: its name, language and everything it talks to."""
@@ -181,6 +228,10 @@ class Node:
     action_clients: tuple[Action, ...] = ()
     timers: tuple[Timer, ...] = ()
     parameters: tuple[Parameter, ...] = ()
+    executor: str = DEFAULT_EXECUTOR
+    threads: int = 0  # of a multi-threaded executor; 0: one per core
+    callback_groups: tuple[CallbackGroup, ...] = ()
+    remappings: tuple[tuple[str, str], ...] = ()  # (from, to), applied by the launch file
 
     @property
     def is_cpp(self) -> bool:
@@ -251,20 +302,54 @@ class Node:
         """A topic, service or action name of this node as the ROS graph lists it."""
         return names.fully_qualified(name, self.name, namespace)
 
-    def graph_entries(self, endpoints, namespace: str = "/") -> tuple[tuple[str, str], ...]:
-        """(name, type) of each endpoint as graph queries list them: ('/chatter', 'std_msgs/msg/String')."""
-        return tuple((self.resolved(e.topic if isinstance(e, Topic) else e.name, namespace), e.type.full_name)
+    def launched(self, name: str, namespace: str = "/") -> str:
+        """A name of this node as the graph lists it once the launch file's remappings apply.
+
+        A rule matches the name both resolve to (ROS 1 and 2 alike expand a rule's relative
+        and private names in the node's namespace); the first rule that matches wins.
+        """
+        resolved = self.resolved(name, namespace)
+        for source, target in self.remappings:
+            if self.resolved(source, namespace) == resolved:
+                return self.resolved(target, namespace)
+        return resolved
+
+    def graph_entries(self, endpoints, namespace: str = "/",
+                      launched: bool = False) -> tuple[tuple[str, str], ...]:
+        """(name, type) of each endpoint as graph queries list them: ('/chatter', 'std_msgs/msg/String');
+        `launched`: as the launch file starts the node, remapped."""
+        resolve = self.launched if launched else self.resolved
+        return tuple((resolve(e.topic if isinstance(e, Topic) else e.name, namespace), e.type.full_name)
                      for e in endpoints)
 
-    def goal_topics(self, actions, namespace: str = "/") -> tuple[tuple[str, str], ...]:
+    @property
+    def callback_endpoints(self) -> tuple:
+        """The endpoints with callbacks an executor runs, which callback groups can hold."""
+        return (self.subscribers + self.service_servers + self.service_clients + self.action_servers
+                + self.action_clients + self.timers)
+
+    def callback_group(self, endpoint) -> CallbackGroup | None:
+        """The group an endpoint's callbacks are in, or None: the node's default group."""
+        return next((group for group in self.callback_groups if endpoint in group.members), None)
+
+    @property
+    def grouped_endpoints(self) -> tuple:
+        """The endpoints in a callback group of their own."""
+        return tuple(endpoint for group in self.callback_groups for endpoint in group.members)
+
+    @property
+    def multi_threaded(self) -> bool:
+        return self.executor == "multi_threaded"
+
+    def goal_topics(self, actions, namespace: str = "/", launched: bool = False) -> tuple[tuple[str, str], ...]:
         """ROS 1: (name, type) of each action's goal topic, which actionlib's server subscribes to."""
         return tuple((f"{name}/goal", f"{type_name}ActionGoal")
-                     for name, type_name in self.graph_entries(actions, namespace))
+                     for name, type_name in self.graph_entries(actions, namespace, launched))
 
-    def goal_services(self, actions, namespace: str = "/") -> tuple[tuple[str, str], ...]:
+    def goal_services(self, actions, namespace: str = "/", launched: bool = False) -> tuple[tuple[str, str], ...]:
         """(name, type) of each action's goal service (ROS 2), which rclcpp's graph queries list."""
         return tuple((f"{name}/_action/send_goal", f"{type_name}_SendGoal")
-                     for name, type_name in self.graph_entries(actions, namespace))
+                     for name, type_name in self.graph_entries(actions, namespace, launched))
 
     @property
     def endpoints(self) -> tuple:
@@ -418,6 +503,17 @@ class Package:
     @property
     def launch_file(self) -> str:
         return layout.launch_file(self.name, self.ros, self.launch_format)
+
+    @property
+    def launch_arguments(self) -> tuple[LaunchArgument, ...]:
+        return LAUNCH_ARGUMENTS if self.ros == 2 else ROS1_LAUNCH_ARGUMENTS
+
+    @property
+    def container_executable(self) -> str:
+        """The component container the launch file loads components into by default: a
+        multi-threaded one when a component's answers give it a multi-threaded executor."""
+        threaded = any(node.component and node.multi_threaded for node in self.nodes)
+        return "component_container_mt" if threaded else "component_container"
 
     @property
     def launch_file_name(self) -> str:

@@ -13,6 +13,7 @@ from . import qos as qos_rules
 from .answers import QUICK_LISTS
 from .definitions import SECTIONS
 from .licenses import LICENSES
+from .model import CALLBACK_GROUP_TYPES, EXECUTORS
 from .parameters import SCALAR_TYPES, TYPE_ALIASES
 
 _KEYWORDS = sorted({*python_names.KEYWORDS, *python_names.SOFT_KEYWORDS, *names.CPP_KEYWORDS})
@@ -109,10 +110,31 @@ def _node() -> dict:
             "action_clients": _endpoint("action", "fibonacci:test_msgs/action/Fibonacci"),
             "timers": {"type": "array", "items": timer},
             "parameters": _parameter(),
+            "executor": {"enum": list(EXECUTORS),
+                         "description": "what the node spins on (static and events: C++, where the distro has them)"},
+            "threads": {"type": "integer", "minimum": 1, "maximum": distros.THREADS_MAX,
+                        "description": "a multi_threaded executor's threads (none: one per core)"},
+            "callback_groups": {"type": "array", "items": {
+                "type": "object", "required": ["name", "members"], "additionalProperties": False, "properties": {
+                    "name": _name(_anchored(names.SNAKE_CASE), names.IDENTIFIER_MAX, "the group's name"),
+                    "type": {"enum": list(CALLBACK_GROUP_TYPES)},
+                    "members": {"oneOf": [{"type": "array", "minItems": 1, "items": {"type": "string"}},
+                                          {"type": "string", "description": "comma-separated"}],
+                                "description": "the node's subscribers, services, actions and timers in the "
+                                               "group, by name"}}}},
+            "remappings": {"type": "object", "description": "from: to, names the launch file remaps",
+                           "propertyNames": {"pattern": _ROS_NAME, "maxLength": names.ROS_NAME_MAX},
+                           "additionalProperties": {"type": "string", "pattern": _ROS_NAME,
+                                                    "maxLength": names.ROS_NAME_MAX}},
         },
         # The launch file configures and activates lifecycle nodes only.
-        "if": {"required": ["autostart"], "properties": {"autostart": {"const": True}}},
-        "then": {"required": ["lifecycle"], "properties": {"lifecycle": {"const": True}}},
+        "allOf": [
+            {"if": {"required": ["autostart"], "properties": {"autostart": {"const": True}}},
+             "then": {"required": ["lifecycle"], "properties": {"lifecycle": {"const": True}}}},
+            # A thread count is a multi-threaded executor's.
+            {"if": {"required": ["threads"]},
+             "then": {"required": ["executor"], "properties": {"executor": {"const": "multi_threaded"}}}},
+        ],
     }
     return {"type": "array", "minItems": 1, "items": {"oneOf": [
         {"type": "string", "pattern": _anchored(names.SNAKE_CASE)}, node]}}

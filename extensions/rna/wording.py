@@ -121,3 +121,36 @@ def describe_nodes(nodes, width: int | None = None) -> str:
                  else f"The {nodes[0].name} node")
     forms.append(f"{len(nodes)} ROS nodes" if len(nodes) > 1 else "A ROS node")
     return next((form for form in forms if width is None or len(form) <= width), forms[-1])
+
+
+def threads_text(node) -> str:
+    """A multi-threaded executor's threads, in words."""
+    return f"{node.threads} threads" if node.threads else "as many threads as the machine has cores"
+
+
+_EXECUTORS = {"single_threaded": "a single-threaded executor", "multi_threaded": "a multi-threaded executor",
+              "static": "a static single-threaded executor", "events": "an events executor"}
+
+
+def spinning_text(node) -> str:
+    """How a node runs its callbacks and what its launch file changes, for its README: '' when
+    it spins as every node does by default (one thread, no groups, no remappings)."""
+    sentences = []
+    if node.executor != "single_threaded" or node.callback_groups:
+        executor = _EXECUTORS[node.executor]
+        if node.multi_threaded:
+            executor += f" of {node.threads} threads" if node.threads else " of one thread per core"
+        if node.ros == 1 and node.multi_threaded:
+            executor = "a ros::MultiThreadedSpinner" + executor.removeprefix("a multi-threaded executor")
+        what = "Its executable spins it on" if node.component else "Spins on"
+        sentences.append(f"{what} {executor}.")
+        groups = [f"`{group.name}` ({group.type.replace('_', ' ')}: "
+                  + ", ".join(f"`{getattr(e, 'topic', None) or getattr(e, 'name', e.id)}`" for e in group.members)
+                  + ")" for group in node.callback_groups]
+        if groups:
+            sentences.append(f"Callback group{'s' if len(groups) > 1 else ''} apart from the node's default one: "
+                             f"{english_list(groups)}.")
+    if node.remappings:
+        remapped = [f"`{source}` to `{target}`" for source, target in node.remappings]
+        sentences.append(f"The launch file remaps {english_list(remapped)}.")
+    return " ".join(sentences)

@@ -7,14 +7,17 @@ refuses an attribute its action does not read), the Python file through launch_r
 Python API, its calls evaluated from the source without importing it. Each is read for one
 distro and may use only what every release of that distro's launch_ros has
 (rna.launch_features, the one home of that table). Each reads back as the same
-description: arguments, nodes (package, executable, name, namespace, parameter files,
-lifecycle autostart by launch_ros or by the node's own parameter, condition) and containers
-with the nodes they load (parameters, intra-process communication).
+description: arguments, nodes (package, executable, name, namespace, parameter files and
+values, remappings, ROS arguments, lifecycle autostart by launch_ros or by the node's own
+parameter, condition) and containers with the nodes they load (namespace, parameters,
+remappings, intra-process communication). Substitutions read as their XML spelling,
+$(var name).
 """
 
 from __future__ import annotations
 
 import ast
+import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -27,7 +30,7 @@ TYPED_ATTRIBUTES = {"value"}
 AUTOSTART = ("autostart", True)  # rna.model.AUTOSTART_PARAMETER, set to true
 
 
-def _node(pkg, exec_, name, namespace, params, autostart, condition) -> dict:
+def _node(pkg, exec_, name, namespace, params, autostart, condition, remaps=(), ros_args=None) -> dict:
     """A node; `autostart` is "launch_ros", "parameter" (the node's own, set true) or None."""
     params = list(params)
     if AUTOSTART in params:
@@ -35,7 +38,7 @@ def _node(pkg, exec_, name, namespace, params, autostart, condition) -> dict:
         params.remove(AUTOSTART)
         autostart = "parameter"
     return {"pkg": pkg, "exec": exec_, "name": name, "namespace": namespace, "params": tuple(params),
-            "autostart": autostart, "condition": condition}
+            "autostart": autostart, "condition": condition, "remaps": tuple(remaps), "ros_args": ros_args}
 
 
 def _condition(attributes) -> tuple[str, str] | None:
@@ -77,21 +80,27 @@ def _read_entities(entities, typed: bool, distro: str) -> dict:
         elif tag in ("node", "lifecycle_node"):
             started = "launch_ros" if tag == "lifecycle_node" and _true(attributes.get("autostart")) else None
             nodes.append(_node(attributes["pkg"], attributes["exec"], attributes.get("name"),
-                               attributes.get("namespace"), params, started, _condition(attributes)))
+                               attributes.get("namespace"), params, started, _condition(attributes),
+                               _remaps(children), attributes.get("ros_args")))
         elif tag == "node_container":
             loaded = []
             for attrs, grandchildren in children.get("composable_node", []):
-                for child_tag in ("param", "extra_arg"):
+                for child_tag in ("param", "extra_arg", "remap"):
                     for child, _ in grandchildren.get(child_tag, []):
                         _check_attributes(frontend, child_tag, child)
                 extra = [(a["name"], _extra_value(a["value"])) for a, _ in grandchildren.get("extra_arg", [])]
                 loaded.append({"pkg": attrs["pkg"], "plugin": attrs["plugin"], "name": attrs.get("name"),
+                               "namespace": attrs.get("namespace"),
                                "params": tuple(_param(p, typed) for p, _ in grandchildren.get("param", [])),
-                               "extra": tuple(extra)})
+                               "remaps": _remaps(grandchildren), "extra": tuple(extra)})
             containers.append({"pkg": attributes["pkg"], "exec": attributes["exec"], "name": attributes["name"],
                                "namespace": attributes.get("namespace"), "condition": _condition(attributes),
-                               "nodes": loaded})
+                               "params": tuple(params), "ros_args": attributes.get("ros_args"), "nodes": loaded})
     return _description(args, nodes, containers)
+
+
+def _remaps(children: dict) -> tuple[tuple[str, str], ...]:
+    return tuple((attributes["from"], attributes["to"]) for attributes, _ in children.get("remap", []))
 
 
 def _extra_value(value):
@@ -163,6 +172,8 @@ class _Reader:
             return self.names[node.id]
         if isinstance(node, ast.List):
             return [self.value(item) for item in node.elts]
+        if isinstance(node, ast.Tuple):  # a remapping, (from, to)
+            return tuple(self.value(item) for item in node.elts)
         if isinstance(node, ast.Dict):  # parameters by name, as launch_ros takes them
             return {self.value(key): self.value(value) for key, value in zip(node.keys, node.values, strict=True)}
         if isinstance(node, ast.Call) and isinstance(node.func, ast.Name):
@@ -212,22 +223,31 @@ def read_python(text: str, distro: str) -> dict:
             args[action["args"][0]] = action.get("default_value")
         elif call in ("Node", "LifecycleNode"):
             started = "launch_ros" if call == "LifecycleNode" and action.get("autostart") is True else None
-            params = [entry for p in action.get("parameters", [])
-                      for entry in (p.items() if isinstance(p, dict) else [p])]
             nodes.append(_node(action["package"], action["executable"], action.get("name"), action.get("namespace"),
-                               params, started, action.get("condition")))
+                               _python_params(action), started, action.get("condition"),
+                               action.get("remappings", ()), _ros_args(action)))
         elif call == "ComposableNodeContainer":
             loaded = [{"pkg": d["package"], "plugin": d["plugin"], "name": d.get("name"),
-                       "params": tuple(entry for p in d.get("parameters", [])
-                                       for entry in (p.items() if isinstance(p, dict) else [p])),
+                       "namespace": d.get("namespace"), "params": _python_params(d),
+                       "remaps": tuple(d.get("remappings", ())),
                        "extra": tuple(entry for e in d.get("extra_arguments", []) for entry in e.items())}
                       for d in action["composable_node_descriptions"]]
             containers.append({"pkg": action["package"], "exec": action["executable"], "name": action["name"],
                                "namespace": action.get("namespace"), "condition": action.get("condition"),
-                               "nodes": loaded})
+                               "params": _python_params(action), "ros_args": _ros_args(action), "nodes": loaded})
         else:
             raise AssertionError(f"{call} in the LaunchDescription")
     return _description(args, nodes, containers)
+
+
+def _python_params(action: dict) -> tuple:
+    """Parameter files and (name, value) pairs, as the frontends list them."""
+    return tuple(entry for p in action.get("parameters", []) for entry in (p.items() if isinstance(p, dict) else [p]))
+
+
+def _ros_args(action: dict) -> str | None:
+    """ros_arguments as the frontends' ros_args attribute spells them: one command line."""
+    return " ".join(action["ros_arguments"]) if "ros_arguments" in action else None
 
 
 READERS = {".xml": read_xml, ".yaml": read_yaml, ".py": read_python}
@@ -239,19 +259,62 @@ def description(path: Path, distro: str) -> dict:
     return READERS[path.suffix](path.read_text(encoding="utf-8"), distro)
 
 
+# What every node gets from the launch arguments (rna.model.LAUNCH_ARGUMENTS).
+SIM_TIME = ("use_sim_time", "$(var use_sim_time)")
+NAMESPACE = "$(var namespace)"
+LOG_LEVEL = "--log-level $(var log_level)"
+
+
 def expected_description(package) -> dict:
     """What the package model says its launch file starts."""
     components = [node for node in package.nodes if node.component]
     container_condition = ("if", "$(var container)") if components else None
-    args = ({"container": "false", "container_executable": "component_container"} if components else {})
+    args = {argument.name: argument.default for argument in package.launch_arguments}
+    if components:
+        args |= {"container": "false", "container_executable": package.container_executable}
     config = f"$(find-pkg-share {package.name})/config"
-    nodes = [_node(package.name, node.name, node.name, "" if node.autostart else None,
-                   [f"{config}/{node.name}.yaml"], package.autostart_form if node.autostart else None,
-                   ("unless", "$(var container)") if node.component else None) for node in package.nodes]
+    nodes = [_node(package.name, node.name, node.name, NAMESPACE, [f"{config}/{node.name}.yaml", SIM_TIME],
+                   package.autostart_form if node.autostart else None,
+                   ("unless", "$(var container)") if node.component else None, node.remappings, LOG_LEVEL)
+             for node in package.nodes]
     containers = [{"pkg": "rclcpp_components", "exec": "$(var container_executable)",
-                   "name": f"{package.name}_container", "namespace": "", "condition": container_condition,
+                   "name": f"{package.name}_container", "namespace": NAMESPACE, "condition": container_condition,
+                   "params": (SIM_TIME,), "ros_args": LOG_LEVEL,
                    "nodes": [{"pkg": package.name, "plugin": f"{package.name}::{node.class_name}", "name": node.name,
-                              "params": (f"{config}/{node.name}.yaml", *([AUTOSTART] if node.autostart else [])),
+                              "namespace": NAMESPACE,
+                              "params": (f"{config}/{node.name}.yaml", SIM_TIME,
+                                         *([AUTOSTART] if node.autostart else [])),
+                              "remaps": node.remappings,
                               "extra": (("use_intra_process_comms", True),) if package.intra_process(node) else ()}
                              for node in components]}]
     return _description(args, nodes, containers if components else [])
+
+
+# ----------------------------------------------------------------------------- running it
+
+def substituted(text: str, values: dict, share) -> str:
+    """`text` with $(var NAME) given by `values` and $(find-pkg-share PACKAGE) by share(PACKAGE)."""
+    text = re.sub(r"\$\(find-pkg-share ([^)]+)\)", lambda match: str(share(match[1])), text)
+    return re.sub(r"\$\(var ([^)]+)\)", lambda match: str(values[match[1]]), text)
+
+
+def ros_arguments(node: dict, values: dict, share) -> list[str]:
+    """What launch_ros gives a node of the description on its command line (after --ros-args),
+    with the launch arguments `values`: its name and namespace, its parameter files, then its
+    parameters, remappings and ROS arguments."""
+    arguments = ["-r", f"__node:={node['name']}"]
+    namespace = substituted(node["namespace"] or "", values, share).strip("/")
+    if namespace:
+        arguments += ["-r", f"__ns:=/{namespace}"]
+    for param in node["params"]:
+        if isinstance(param, str):
+            arguments += ["--params-file", substituted(param, values, share)]
+        else:
+            name, value = param
+            value = substituted(value, values, share) if isinstance(value, str) else value
+            arguments += ["-p", f"{name}:={str(value).lower() if isinstance(value, bool) else value}"]
+    for source, target in node["remaps"]:
+        arguments += ["-r", f"{substituted(source, values, share)}:={substituted(target, values, share)}"]
+    if node["ros_args"]:
+        arguments += substituted(node["ros_args"], values, share).split()
+    return arguments

@@ -7,6 +7,15 @@ Run with the ROS venv's Python (the test process itself has no rclpy):
       during a test_msgs/Fibonacci goal to ACTION, time the std_msgs/Int32 messages on
       TOPIC and a std_srvs/Trigger call to SERVICE; then cancel a second goal mid-way;
       print what was measured as JSON
+  ros2_probe.py busy_service SERVICE TOPIC
+      time the std_msgs/Int32 messages on TOPIC while a std_srvs/Trigger call to SERVICE
+      is answered (a slow one); print what was measured as JSON
+  ros2_probe.py clocked TOPIC TYPE
+      count the messages of TYPE (pkg/msg/Name) on TOPIC for a second with no /clock, then
+      for a second of /clock published from here; print both counts as JSON
+  ros2_probe.py relay TOPIC TYPE OUT_TOPIC OUT_TYPE
+      publish messages of TYPE on TOPIC (reliable, keeping the last 10), count those of
+      OUT_TYPE on OUT_TOPIC; print the counts as JSON
   ros2_probe.py transitions NODE               print "watching" once it hears NODE's transition
                                                events, then each one until NODE is finalized
   ros2_probe.py decoy NODE...                  hold nodes of these names, each publishing on
@@ -38,6 +47,7 @@ from lifecycle_msgs.msg import State, Transition, TransitionEvent
 from lifecycle_msgs.srv import ChangeState
 from rcl_interfaces.msg import ParameterType
 from rcl_interfaces.srv import GetParameters
+from rosgraph_msgs.msg import Clock
 from std_msgs.msg import Int32
 from std_srvs.srv import Trigger
 from test_msgs.action import Fibonacci
@@ -137,6 +147,86 @@ def busy_goal(node, action, names):
         "cancel_accepted": len(canceling) == 1,
         "canceled": canceled == GoalStatus.STATUS_CANCELED,
     }))
+
+
+def busy_service(node, service, names):
+    (topic,) = names
+    executor = SingleThreadedExecutor()
+    executor.add_node(node)
+    arrivals = []
+    node.create_subscription(Int32, topic, lambda _: arrivals.append(time.monotonic()), 10)
+    trigger = node.create_client(Trigger, service)
+    if not trigger.wait_for_service(timeout_sec=TIMEOUT):
+        sys.exit(f"{service} is not available")
+    deadline = time.monotonic() + TIMEOUT
+    while len(arrivals) < 5:  # the timer is running, as seen from here
+        if time.monotonic() > deadline:
+            sys.exit(f"nothing on {topic}")
+        executor.spin_once(timeout_sec=0.01)
+    future = trigger.call_async(Trigger.Request())
+    start = time.monotonic()
+    while not future.done() and time.monotonic() < start + TIMEOUT:
+        executor.spin_once(timeout_sec=0.01)
+    if not future.done():
+        sys.exit(f"{service} did not answer")
+    end = time.monotonic()
+    during = [start, *(t for t in arrivals if start <= t <= end), end]
+    gaps = [later - earlier for earlier, later in zip(during, during[1:], strict=False)]
+    print(json.dumps({"service_seconds": end - start, "messages": len(during) - 2, "largest_gap": max(gaps)}))
+
+
+def message_type(name):
+    package, kind, type_name = name.split("/")
+    return getattr(importlib.import_module(f"{package}.{kind}"), type_name)
+
+
+def wait_for_publisher(node, topic):
+    deadline = time.monotonic() + TIMEOUT
+    while node.count_publishers(topic) == 0:
+        if time.monotonic() > deadline:
+            sys.exit(f"nothing publishes {topic}")
+        rclpy.spin_once(node, timeout_sec=0.1)
+
+
+def clocked(node, topic, names):
+    (type_name,) = names
+    heard = []
+    node.create_subscription(message_type(type_name), topic, lambda _: heard.append(1), 10)
+    clock = node.create_publisher(Clock, "/clock", 10)
+    wait_for_publisher(node, topic)
+    end = time.monotonic() + 1.0
+    while time.monotonic() < end:  # simulated time stands still at 0: no timer of the node's fires
+        rclpy.spin_once(node, timeout_sec=0.01)
+    before = len(heard)
+    now = 0
+    end = time.monotonic() + 1.0
+    while time.monotonic() < end:  # a second of simulated time, 10 ms a step
+        now += 10_000_000
+        message = Clock()
+        message.clock.sec, message.clock.nanosec = divmod(now, 1_000_000_000)
+        clock.publish(message)
+        rclpy.spin_once(node, timeout_sec=0.01)
+    print(json.dumps({"before_clock": before, "with_clock": len(heard) - before}))
+
+
+def relay(node, topic, names):
+    type_name, out_topic, out_type = names
+    heard = []
+    node.create_subscription(message_type(out_type), out_topic, lambda _: heard.append(1), 10)
+    publisher = node.create_publisher(message_type(type_name), topic, 10)
+    deadline = time.monotonic() + TIMEOUT
+    while publisher.get_subscription_count() == 0:
+        if time.monotonic() > deadline:
+            sys.exit(f"nothing subscribes to {topic}")
+        rclpy.spin_once(node, timeout_sec=0.1)
+    sent = 0
+    end = time.monotonic() + 1.0
+    while time.monotonic() < end or (not heard and time.monotonic() < deadline):
+        publisher.publish(message_type(type_name)())
+        sent += 1
+        for _ in range(10):
+            rclpy.spin_once(node, timeout_sec=0.01)
+    print(json.dumps({"sent": sent, "heard": len(heard)}))
 
 
 def transitions(node, target, _):
@@ -254,9 +344,9 @@ def main():
     rclpy.init()
     node = rclpy.create_node("rna_test_probe")
     try:
-        {"params": params, "lifecycle": lifecycle, "busy_goal": busy_goal,
-         "transitions": transitions, "decoy": decoy, "sees": sees, "hears": hears, "goal_result": goal_result,
-         "gating": gating}[command](node, target, rest)
+        {"params": params, "lifecycle": lifecycle, "busy_goal": busy_goal, "busy_service": busy_service,
+         "clocked": clocked, "relay": relay, "transitions": transitions, "decoy": decoy, "sees": sees,
+         "hears": hears, "goal_result": goal_result, "gating": gating}[command](node, target, rest)
     finally:
         node.destroy_node()
         rclpy.try_shutdown()

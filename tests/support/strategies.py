@@ -28,7 +28,7 @@ from pathlib import Path
 import yaml
 from hypothesis import assume
 from hypothesis import strategies as st
-from rna import AnswerError, build_package, catalogue, distros, layout, names
+from rna import AnswerError, build_package, catalogue, distros, layout, model, names
 from rna import qos as qos_rules
 from rna.configs import yaml_literal
 from rna.licenses import LICENSES
@@ -320,6 +320,56 @@ def timers(draw) -> dict | float | str:
     return period  # a timer named `timer`
 
 
+def _callback_names(node: dict) -> list[set[str]]:
+    """What a callback group's members may call each of a node's endpoints with callbacks: its name and id."""
+    found = []
+    for key in ("subscribers", "service_servers", "service_clients", "action_servers", "action_clients", "timers"):
+        for item in node.get(key) or []:
+            if key == "timers":
+                name = (item.get("name", "timer") if isinstance(item, dict)
+                        else item.split(":")[0] if isinstance(item, str) and ":" in item else "timer")
+                found.append({name})
+                continue
+            if isinstance(item, str):
+                item = {"name": item.split(":")[0]}
+            name = item.get("topic", item.get("name"))
+            found.append({name, item.get("id") or names.identifier_from_name(name)})
+    return found
+
+
+@st.composite
+def callback_groups(draw, node: dict) -> list[dict]:
+    """Groups of the node's endpoints with callbacks, each named by a name that names it alone."""
+    endpoints = _callback_names(node)
+    alone = [sorted(names_of - set().union(*(other for other in endpoints if other is not names_of)))
+             for names_of in endpoints]
+    members = [draw(st.sampled_from(choices)) for choices in alone if choices and draw(st.booleans())]
+    groups, taken = [], set()
+    while members:
+        size = draw(st.integers(1, len(members)))
+        name = draw(identifiers("callback group").filter(lambda n: n not in taken))
+        taken.add(name)
+        group = {"name": name, "members": members[:size]}
+        if draw(st.booleans()):
+            group["type"] = draw(st.sampled_from(model.CALLBACK_GROUP_TYPES))
+        groups.append(group)
+        members = members[size:]
+    return groups
+
+
+@st.composite
+def remappings(draw, ros: int) -> dict:
+    """Names the launch file remaps (ROS 1's private names are written without '/' after '~': none here)."""
+    name = ros_names().filter(lambda text: ros == 2 or not text.startswith("~"))
+    pairs = draw(st.dictionaries(name, name, max_size=3))
+    kept = {}  # no two rules for one name (refused), none remapping a name to itself
+    for source, target in pairs.items():
+        resolved = names.fully_qualified(source, "n")
+        if resolved != names.fully_qualified(target, "n") and resolved not in kept:
+            kept[resolved] = (source, target)
+    return dict(kept.values())
+
+
 # ----------------------------------------------------------------------------- parameters
 
 def _ints(ros: int) -> st.SearchStrategy[int]:
@@ -429,6 +479,18 @@ def nodes(draw, name: str, distro: str, build_type: str, own: OwnInterfaces | No
             node[key] = draw(st.lists(services_or_actions(kind, distro, own), max_size=2))
     if draw(small):
         node["timers"] = draw(st.lists(timers(), max_size=2))
+    executor = draw(st.sampled_from(model.EXECUTORS).filter(
+        lambda executor: not distros.executor_error(executor, ros, language, distro)))
+    if executor != model.DEFAULT_EXECUTOR or draw(st.integers(0, 4)) == 0:
+        node["executor"] = executor
+    if executor == "multi_threaded" and draw(st.booleans()):
+        node["threads"] = draw(st.integers(1, distros.THREADS_MAX))
+    if ros == 2 and draw(st.integers(0, 2)) == 0:
+        groups = draw(callback_groups(node))
+        if groups:
+            node["callback_groups"] = groups
+    if draw(st.integers(0, 2)) == 0:
+        node["remappings"] = draw(remappings(ros))
     expected = {}
     if draw(small):
         drawn = draw(st.lists(parameters(ros), max_size=4))

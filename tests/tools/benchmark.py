@@ -27,6 +27,8 @@ run, no warm-up):
   update    `copier update` adding a node to a 20-node ament_cmake package vs copying it,
             and Copier's own update and copy of a one-file template (the update's floor)
   catkin    the same for a 20-node catkin (noetic) package
+  large     the ament_cmake update again, the package holding a 200 MB bag of the user's
+            (random bytes, committed): a file the update must not read nor slow down on
 
 The template keeps compiled code between runs (extensions/patches/code_cache.py): here in the
 scratch folder, filled by one copy before the rounds; `default_cold` runs with it off.
@@ -122,6 +124,7 @@ FLOOR_IN_REPOSITORY_FILES = {"copier.yml": "_subdirectory: floor\nname:\n  type:
 FLOOR_UPDATE_FILES = {**FLOOR_FILES,
                       "template/{{ _copier_conf.answers_file }}.jinja": "{{ _copier_answers|to_nice_yaml }}\n"}
 UPDATE_NODES = 20
+LARGE_FILE = 200 * 10**6  # bytes: a bag or map of the user's, committed in the package
 
 # ─── Measuring one process ────────────────────────────────────────────────────
 
@@ -252,8 +255,9 @@ COMPARISONS = (
     Comparison("update +1 node / copy, 20-node catkin", "update_20_catkin", "copy_20_catkin", 3.0),
     Comparison("Copier's own: update / copy, one-file template (its floor)", "floor_update", "floor_copy"),
     Comparison("update +1 node, 20-node ament_cmake / Copier's own update", "update_20", "floor_update"),
+    Comparison("update +1 node, the package holding a 200 MB bag / without", "update_20_large", "update_20", 1.1),
 )
-GROUPS = ("default", "node", "scale", "update", "catkin")  # CASE_GROUPS names their cases
+GROUPS = ("default", "node", "scale", "update", "catkin", "large")  # CASE_GROUPS names their cases
 
 
 class Bench:
@@ -286,6 +290,8 @@ class Bench:
                 destination = work / f"base-{group}" / "project"
                 self.bases[group] = generate_project(self.template, destination, scaled_package(UPDATE_NODES, ros1),
                                                      vcs_ref=NEW_VERSION)
+        if "large" in groups:
+            self.bases["large"] = self._with_large_file(self.bases["update"], work / "base-large" / "project")
         if "update" in groups:
             self.floor_for_update = self._floor_repo("floor-update", FLOOR_UPDATE_FILES)
             self.bases["floor"] = generate_project(self.floor_for_update, work / "base-floor" / "project",
@@ -314,6 +320,19 @@ class Bench:
             (destination / path).write_text(text)
         commit_repository(destination, f"rna-template {NEW_VERSION} (benchmark snapshot)", NEW_VERSION)
         return destination
+
+    @staticmethod
+    def _with_large_file(base: Path, destination: Path) -> Path:
+        """`base` with a bag of LARGE_FILE random bytes (no compression spares git anything) committed."""
+        project = shutil.copytree(base, destination, symlinks=True)
+        bag = project / "robot" / "bags" / "drive.bag"
+        bag.parent.mkdir()
+        with bag.open("wb") as out:
+            for _ in range(LARGE_FILE // 10**6):
+                out.write(os.urandom(10**6))
+        git("add", "-A", cwd=project)
+        git("commit", "-q", "-m", "a drive recorded", cwd=project)
+        return project
 
     def _floor_repo(self, name: str, files: dict[str, str]) -> Path:
         destination = self.work / name
@@ -391,6 +410,10 @@ class Bench:
             cases.append(Case(f"update_20{suffix}", group, f"update: add a node to the {kind} package",
                               self.update(group, self.data_file(f"update_20{suffix}", {"nodes": grown["nodes"]})),
                               f"project/robot/config/{added}.yaml"))
+        if "large" in self.bases:
+            cases.append(Case("update_20_large", "large", "update: the same, the package holding a 200 MB bag",
+                              self.update("large", self.data_file("update_20", {"nodes": scaled_package(
+                                  UPDATE_NODES + 1)["nodes"]})), f"project/robot/config/{added}.yaml"))
         return cases
 
 
@@ -645,6 +668,7 @@ CASE_GROUPS = {
     "scale": ("nodes_1", "nodes_10", "nodes_50", "nodes_100"),
     "update": ("copy_20", "update_20", "floor_copy", "floor_update"),
     "catkin": ("copy_20_catkin", "update_20_catkin"),
+    "large": ("update_20_large",),
 }
 
 if __name__ == "__main__":

@@ -6,6 +6,7 @@ mappings; every rule broken raises ValueError with a sentence that starts with t
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import re
 from collections.abc import Iterable, Mapping
@@ -16,7 +17,8 @@ import yaml
 from .. import catalogue, distros, names, python_names
 from .. import qos as qos_rules
 from ..interfaces import InterfaceType, normalised_type, parse_interface
-from ..model import AUTOSTART_PARAMETER, BASE_MEMBERS, DIAGNOSTICS_TASK, Action, Node, Service, Timer, Topic
+from ..model import (AUTOSTART_PARAMETER, BASE_MEMBERS, CALLBACK_GROUP_TYPES, DEFAULT_EXECUTOR, DIAGNOSTICS_TASK,
+                     EXECUTORS, Action, CallbackGroup, Node, Service, Timer, Topic)
 from ..qos import Qos
 from ..parameters import INT_RANGE, Parameter, ParameterType, coerce_default, infer_type, on_step, parse_type
 from ..shapes import as_list, check_keys, load_yaml
@@ -257,7 +259,100 @@ def _check_unique(items: Iterable[tuple[str, str]]) -> None:
 
 _NODE_KEYS = ("name", "language", "description", "lifecycle", "autostart", "component", "diagnostics", "publishers",
               "subscribers", "service_servers", "service_clients", "action_servers", "action_clients", "timers",
-              "parameters", "renamed_from")
+              "parameters", "executor", "threads", "callback_groups", "remappings", "renamed_from")
+
+
+def _parse_executor(item: Mapping, ros: int, language: str, distro: str | None) -> tuple[str, int]:
+    """(executor, threads): what the node spins on, and a multi-threaded one's thread count (0: one per core)."""
+    executor = item.get("executor")
+    executor = DEFAULT_EXECUTOR if executor in (None, "") else executor
+    if executor not in EXECUTORS:
+        raise ValueError(f"executor '{executor}' is not one of {', '.join(EXECUTORS)}")
+    error = distros.executor_error(executor, ros, language, distro)
+    if error:
+        raise ValueError(error)
+    threads = item.get("threads")
+    if threads is None:
+        return executor, 0
+    if executor != "multi_threaded":
+        raise ValueError("threads is for a multi_threaded executor: set executor: multi_threaded as well")
+    if isinstance(threads, bool) or not isinstance(threads, int) or not 1 <= threads <= distros.THREADS_MAX:
+        raise ValueError(f"threads must be a whole number from 1 to {distros.THREADS_MAX} (leave it out for one "
+                         "per core)")
+    return executor, threads
+
+
+def _endpoint_names(endpoint) -> set[str]:
+    """What a callback group's members may call an endpoint: its name as given, or its code name."""
+    if isinstance(endpoint, Topic):
+        return {endpoint.topic, endpoint.id}
+    return {getattr(endpoint, "name", endpoint.id), endpoint.id}
+
+
+def _parse_callback_groups(value: object, node: Node) -> tuple[CallbackGroup, ...]:
+    groups, grouped = [], {}
+    for item in as_list(value, "callback_groups"):
+        if not isinstance(item, Mapping):
+            raise ValueError("a callback group must be a mapping with a name and its members")
+        check_keys(item, ("name", "type", "members"), "callback group")
+        name = item.get("name")
+        error = names.identifier_error(name, "callback group")
+        if error:
+            raise ValueError(error)
+        kind = item.get("type") or "mutually_exclusive"
+        if kind not in CALLBACK_GROUP_TYPES:
+            raise ValueError(f"callback group '{name}': type '{kind}' is not one of {', '.join(CALLBACK_GROUP_TYPES)}")
+        wanted = item.get("members")
+        wanted = [part.strip() for part in wanted.split(",")] if isinstance(wanted, str) else wanted
+        if not isinstance(wanted, list) or not wanted:
+            raise ValueError(f"callback group '{name}': list its members, the names of endpoints or timers "
+                             "of the node (e.g. members: [reset, control_loop])")
+        members = []
+        for member in wanted:
+            found = [e for e in node.callback_endpoints if str(member) in _endpoint_names(e)]
+            if not found:
+                publisher = any(str(member) in _endpoint_names(t) for t in node.publishers)
+                raise ValueError(f"callback group '{name}': {names.quoted(member)} "
+                                 + ("is a publisher, which has no callback to run" if publisher else
+                                    "is none of the node's subscribers, services, actions or timers"))
+            if len(found) > 1:
+                raise ValueError(f"callback group '{name}': {names.quoted(member)} names "
+                                 f"{' and '.join(e.label for e in found)}: give one an `id` to tell them apart")
+            (endpoint,) = found
+            if endpoint in grouped:
+                raise ValueError(f"the {endpoint.label} is in callback groups '{grouped[endpoint]}' and '{name}': a "
+                                 "callback is in one group")
+            grouped[endpoint] = name
+            members.append(endpoint)
+        groups.append(CallbackGroup(name, kind, tuple(members)))
+    _check_unique((group.name, group.label) for group in groups)
+    return tuple(groups)
+
+
+def _parse_remappings(value: object) -> tuple[tuple[str, str], ...]:
+    """`{from: to}`: a name the node uses, and the one the launch file gives it instead.
+
+    Sorted: the answers file writes a mapping's keys in order, and no two rules name one
+    name, so which comes first changes nothing.
+    """
+    if value in (None, {}):
+        return ()
+    if not isinstance(value, Mapping):
+        raise ValueError("remappings must be a mapping of names, from: to (e.g. {cmd_vel: /robot/cmd_vel})")
+    pairs, seen = [], {}
+    for source, target in value.items():
+        for name in (source, target):
+            error = names.topic_name_error(name, "remapped")
+            if error:
+                raise ValueError(f"remappings: {error}")
+        resolved = names.fully_qualified(source, "node")
+        if resolved == names.fully_qualified(target, "node"):
+            raise ValueError(f"remappings: '{source}' is remapped to itself")
+        if resolved in seen:
+            raise ValueError(f"remappings: '{seen[resolved]}' and '{source}' are one name to the node: keep one")
+        seen[resolved] = source
+        pairs.append((source, target))
+    return tuple(sorted(pairs))
 
 
 def parse_node(item: object, *, package: str, build_type: str, types: Types) -> Node:
@@ -322,6 +417,13 @@ def parse_node(item: object, *, package: str, build_type: str, types: Types) -> 
             timers=tuple(_parse_timer(x) for x in as_list(item.get("timers"), "timers")),
             parameters=tuple(_parse_parameter(x, ros) for x in as_list(item.get("parameters"), "parameters")),
         )
+        executor, threads = _parse_executor(item, ros, language, types.distro)
+        if item.get("callback_groups") and ros == 1:
+            raise ValueError("callback groups are a ROS 2 feature (roscpp's MultiThreadedSpinner runs each "
+                             "subscription's callbacks one at a time, different ones side by side)")
+        node = dataclasses.replace(node, executor=executor, threads=threads,
+                                   callback_groups=_parse_callback_groups(item.get("callback_groups"), node),
+                                   remappings=_parse_remappings(item.get("remappings")))
         _check_node_names(node)
         _check_script_name(node)
         _check_cpp_names(node)
@@ -366,6 +468,7 @@ def _check_node_names(node: Node) -> None:
     _check_unique(methods)
     # ROS 1 nodes keep parameters in members named after them; ROS 2 nodes ask for them by name.
     _check_unique([*((e.member, e.label) for e in node.endpoints), *methods,
+                   *((group.member, group.label) for group in node.callback_groups),
                    *((name, "a member of the base class") for name in BASE_MEMBERS),
                    *((name, "the diagnostics updater") for name in node.diagnostics_members),
                    *((p.name, f"parameter '{p.name}'") for p in node.parameters if node.ros == 1)])

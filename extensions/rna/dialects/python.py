@@ -19,8 +19,10 @@ from .lines import NESTED_BREAK, NESTED_SPLIT, SPLIT, splittable
 # Names the generated Python files import or define besides interface types.
 RESERVED = frozenset({
     "ActionClient", "ActionServer", "CancelResponse", "ExternalShutdownException",
-    "FloatingPointRange", "Future", "GoalResponse", "GoalStatus", "IntegerRange", "Node",
-    "ParameterDescriptor", "SingleThreadedExecutor", "State", "TransitionCallbackReturn",
+    "FloatingPointRange", "Future", "GoalResponse", "GoalStatus", "IntegerRange",
+    "MultiThreadedExecutor", "MutuallyExclusiveCallbackGroup", "Node", "ParameterDescriptor",
+    "ReentrantCallbackGroup", "SignalHandlerOptions", "SingleThreadedExecutor", "State",
+    "TransitionCallbackReturn",
 })
 
 # Starter code's values for a std_msgs `data` field, changing with a counter.

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from ..wording import threads_text
 from .cpp import _SCALARS, CppDialect
 
 
@@ -9,6 +10,14 @@ class Ros1Cpp(CppDialect):
     HEADER_EXTENSION = "h"
     # roscpp's parameter server keeps integers as int (XmlRpc).
     SCALARS = {**_SCALARS, "int": "int"}
+
+    @property
+    def executor_text(self) -> str:
+        """How the node's callbacks are handled, in words."""
+        node = self.node
+        if not node.multi_threaded:
+            return "one thread (ros::spin())"
+        return f"a ros::MultiThreadedSpinner of {threads_text(node)}"
 
     @staticmethod
     def header(interface) -> str:

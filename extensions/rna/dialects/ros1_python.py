@@ -32,8 +32,16 @@ class Ros1Python(PythonDialect):
             parts += [(a.type, "Goal") for a in node.action_clients]
         parts += [(s.type, "Response") for s in node.service_servers]
         parts += [(a.type, part) for a in node.action_servers for part in ("Feedback", "Result")]
-        return import_block([*self._needs("user"), f"{self.base_module}:{node.base_class_name}",
-                             *(self._import(t, part) for t, part in parts)])
+        logs = ["rospy"] if self.starter_logs else []
+        return import_block([*self._needs("user"), *logs, f"{self.base_module}:{node.base_class_name}",
+                             f"{self.base_module}:run", *(self._import(t, part) for t, part in parts)])
+
+    @property
+    def starter_logs(self) -> bool:
+        """The starter code uses rospy: it logs what it does, waits for an action server."""
+        node = self.node
+        return bool(node.parameters or node.subscribers or node.service_servers or node.service_clients
+                    or node.actions or any(t.type.data_field for t in node.starter_built_messages))
 
     @staticmethod
     def period(timer) -> str:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from .. import names
+from ..wording import threads_text
 from .cpp import CppDialect, number
 from .lines import BREAK
 
@@ -12,6 +13,14 @@ _CMAKE_TARGETS = {
     "rclcpp_action": "rclcpp_action::rclcpp_action",
     "rclcpp_components": "rclcpp_components::component",
     "rclcpp_lifecycle": "rclcpp_lifecycle::rclcpp_lifecycle",
+}
+
+
+_EXECUTOR_CLASSES = {
+    "single_threaded": "rclcpp::executors::SingleThreadedExecutor",
+    "multi_threaded": "rclcpp::executors::MultiThreadedExecutor",
+    "static": "rclcpp::executors::StaticSingleThreadedExecutor",
+    "events": "rclcpp::experimental::executors::EventsExecutor",
 }
 
 
@@ -44,6 +53,30 @@ class Ros2Cpp(CppDialect):
             aliases.append(("CallbackReturn",
                             "rclcpp_lifecycle::node_interfaces::LifecycleNodeInterface::CallbackReturn"))
         return aliases
+
+    @property
+    def executor(self) -> str:
+        """The declaration of the executor the base class's spin() spins the node on."""
+        node = self.node
+        if node.multi_threaded and node.threads:
+            return f"rclcpp::executors::MultiThreadedExecutor executor(rclcpp::ExecutorOptions(), {node.threads});"
+        return f"{_EXECUTOR_CLASSES[node.executor]} executor;"
+
+    @property
+    def executor_text(self) -> str:
+        """The executor, in words."""
+        node = self.node
+        if node.multi_threaded:
+            return f"a multi-threaded executor with {threads_text(node)}"
+        return {"single_threaded": "a single-threaded executor",
+                "static": "a static single-threaded executor (its entities fixed once it spins)",
+                "events": "rclcpp's experimental events executor"}[node.executor]
+
+    @property
+    def component_executor(self) -> str:
+        """What rclcpp_components_register_node's EXECUTOR names for a component's executable, or ''."""
+        return "" if self.node.executor == "single_threaded" else _EXECUTOR_CLASSES[self.node.executor].rsplit(
+            "::", 1)[-1]
 
     @property
     def header_guard(self) -> str:

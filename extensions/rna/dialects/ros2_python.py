@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from ..wording import threads_text
 from .lines import BREAK
 from .python import PythonDialect, import_block, literal
 
@@ -17,8 +18,23 @@ class Ros2Python(PythonDialect):
         """Imports of the user's <node>.py: what its starter code uses."""
         node = self.node
         return import_block([*self._needs("user"), f"{self.base_module}:{node.base_class_name}",
-                             f"{self.base_module}:CtrlC",
-                             *(self._import(t) for t in node.starter_interfaces)])
+                             f"{self.base_module}:run", *(self._import(t) for t in node.starter_interfaces)])
+
+    @property
+    def executor(self) -> str:
+        """The executor run() spins the node on, as made in the base module."""
+        node = self.node
+        if node.multi_threaded:
+            return f"MultiThreadedExecutor(num_threads={node.threads})" if node.threads else "MultiThreadedExecutor()"
+        return "SingleThreadedExecutor()"
+
+    @property
+    def executor_text(self) -> str:
+        """The executor, in words."""
+        node = self.node
+        if not node.multi_threaded:
+            return "a single-threaded executor, in the thread that calls run()"
+        return f"a multi-threaded executor with {threads_text(node)}"
 
     def test_imports(self, discovery_off: bool) -> str:
         """Imports of the node's unit test (test/test_node_<node>.py); `discovery_off`: its

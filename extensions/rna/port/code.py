@@ -168,6 +168,7 @@ def users_methods(ours: str, base: str, theirs: str, methods) -> str:
 
 def port_python(mine: str, old_starter: str, new_starter: str, context: python.Context) -> NodePort:
     ours, base = python.port(mine, context), python.port(old_starter, context)
+    fresh = new_starter  # the ROS 2 starter: the TODO(port) lines it does not have are counted
     new_starter = users_methods(ours.text, base.text, new_starter,
                                 lambda text: _python_methods(text, context.base_class))
     mine_user = user_lines(mine, old_starter)
@@ -175,13 +176,13 @@ def port_python(mine: str, old_starter: str, new_starter: str, context: python.C
     parts = [_python_parts(text) for text in (ours.text, base.text, new_starter)]
     if None in parts:
         text, conflicted = _merged(ours.text, base.text, new_starter)
-        return NodePort(text, rewrites, todo_count(text, new_starter), conflicted)
+        return NodePort(text, rewrites, todo_count(text, fresh), conflicted)
     (our, basis, their) = parts
     head, head_conflict = _merged(our.head, basis.head, their.head)
     body, body_conflict = _merged(our.body, basis.body, their.body)
     imports = _import_text(our.imports, basis.imports, their, ours.needed, head + "\n" + body)
     text = "\n".join([head, *imports, body]) if head else "\n".join([*imports, body])
-    return NodePort(text, rewrites, todo_count(text, new_starter), head_conflict or body_conflict)
+    return NodePort(text, rewrites, todo_count(text, fresh), head_conflict or body_conflict)
 
 
 def port_other_python(text: str, context: python.Context) -> NodePort:
@@ -258,6 +259,7 @@ def _cpp_methods(text: str, class_name: str) -> dict[str, tuple[int, int]]:
 
 def port_cpp(mine: str, old_starter: str, new_starter: str, context: cpp.Context) -> NodePort:
     ours, base = cpp.port(mine, context), cpp.port(old_starter, context)
+    fresh = new_starter  # the ROS 2 starter: the TODO(port) lines it does not have are counted
     new_starter = users_methods(ours.text, base.text, new_starter,
                                 lambda text: _cpp_methods(text, context.class_name))
     mine_user = user_lines(mine, old_starter)
@@ -265,13 +267,13 @@ def port_cpp(mine: str, old_starter: str, new_starter: str, context: cpp.Context
     parts = [_cpp_parts(text) for text in (ours.text, base.text, new_starter)]
     if None in parts:
         text, conflicted = _merged(ours.text, base.text, new_starter)
-        return NodePort(text, rewrites, todo_count(text, new_starter), conflicted)
+        return NodePort(text, rewrites, todo_count(text, fresh), conflicted)
     (our_head, our_includes, our_body), (base_head, base_includes, base_body), (head, includes, body) = parts
     merged_head, head_conflict = _merged(our_head, base_head, head)
     merged_body, body_conflict = _merged(our_body, base_body, body)
     lines = _include_lines(our_includes, base_includes, includes, ours.needed)
     text = "\n".join([merged_head, *lines, merged_body])
-    return NodePort(text, rewrites, todo_count(text, new_starter), head_conflict or body_conflict)
+    return NodePort(text, rewrites, todo_count(text, fresh), head_conflict or body_conflict)
 
 
 def port_other_cpp(text: str, context: cpp.Context) -> NodePort:

@@ -20,6 +20,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 from .. import names
+from ..dialects import lines as breaking
 from . import api
 from .python import Ported, Rewrite
 from .rules import rule
@@ -29,12 +30,18 @@ LEVELS = ("DEBUG", "INFO", "WARN", "ERROR", "FATAL")
 LOG_MACRO = re.compile(r"\bROS_(DEBUG|INFO|WARN|ERROR|FATAL)(_STREAM)?(_THROTTLE|_ONCE|_COND|_NAMED)?\s*\(")
 ROS1_LEFT = re.compile(r"\b(ros::\w+|actionlib::\w+|ROS_[A-Z_]+\s*\(|tf::\w+|nodelet::\w+|XmlRpc\w*|"
                        r"dynamic_reconfigure::\w+|boost::bind)")
+# A message's stamp (msg.header.stamp, msg->header.stamp): a ros::Time in ROS 1, a message in ROS 2.
+STAMP = re.compile(r"(?<![\w.>])(?:\w+(?:\[[^\]\n]*\])?\s*(?:\.|->)\s*)+stamp\b")
+# An operand of time arithmetic or of a comparison (not of ->, <<, >>, ++, --, or an assignment).
+TIME_OPERATOR_BEFORE = re.compile(r"(?:(?<![-+<>=!])[-+<>]|[<>=!]=)\s*$")
+TIME_OPERATOR_AFTER = re.compile(r"\s*(?:[-+](?![-+=>])|[<>](?![<>=])|[<>=!]=)")
 WRITTEN = re.compile(r"\s*(=(?!=)|\+\+|--|[-+*/]=)")
 GOAL_STATES = {"SUCCEEDED": "SUCCEEDED", "ABORTED": "ABORTED", "PREEMPTED": "CANCELED", "RECALLED": "CANCELED"}
 TODO_CALLS = {
     "ros::init": "cpp.todo.main", "ros::spin": "cpp.todo.main", "ros::spinOnce": "cpp.todo.main",
     "ros::NodeHandle": "cpp.todo.node_handle", "ros::param::get": "cpp.todo.param",
-    "ros::param::set": "cpp.todo.param", "ros::param::has": "cpp.todo.param",
+    "ros::param::set": "cpp.todo.global_param", "ros::param::has": "cpp.todo.global_param",
+    "ros::param::del": "cpp.todo.global_param",
     "ros::ServiceClient": "cpp.todo.service_call", "ros::service::call": "cpp.todo.service_call",
     "ros::service::waitForService": "cpp.todo.service_call", "ros::topic::waitForMessage": "cpp.todo.other",
 }
@@ -121,6 +128,11 @@ def closing(masked: str, opening: int) -> int:
     return -1
 
 
+def open_brackets(masked: str) -> int:
+    """How many round and square brackets `masked` (comments and literals blanked) leaves open."""
+    return masked.count("(") + masked.count("[") - masked.count(")") - masked.count("]")
+
+
 def arguments(masked: str, opening: int, end: int) -> list[tuple[int, int]]:
     """(start, end) of each top-level argument between the brackets at `opening` and `end`."""
     spans, depth, start = [], 0, opening + 1
@@ -149,6 +161,7 @@ class _Edit:
 class _Rewriter:
     def __init__(self, text: str, context: Context) -> None:
         self.text = text
+        self.original = set(text.split("\n"))  # lines as long as these were the user's already
         self.ctx = context
         self.rewrites: list[Rewrite] = []
         self.todos: dict[int, list[str]] = {}  # line (from 1, in the current text) -> rules
@@ -198,7 +211,14 @@ class _Rewriter:
                                              " ".join(after[line - 1].split())))
 
     def todo(self, index: int, key: str) -> None:
-        keys = self.todos.setdefault(self.line_of(index), [])
+        """Mark the statement at `index`: its TODO(port) goes above its first line (one inside a call's
+        arguments would be a place a port of the ported file marks again once the call is broken)."""
+        masked = self.masked
+        starts = [0] + [position + 1 for position, char in enumerate(masked) if char == "\n"]
+        line = self.line_of(index)
+        while line > 1 and open_brackets(masked[:starts[line - 1]]) > 0:
+            line -= 1
+        keys = self.todos.setdefault(line, [])
         if key not in keys and not (key == "cpp.todo.other" and keys):
             keys.append(key)
 
@@ -233,7 +253,22 @@ class _Rewriter:
         self.pass_todos()
         todos = sorted((line, key) for line, keys in self.todos.items() for key in keys)
         self.insert_todos()
-        return Ported(self.text, self.rewrites, todos, self.needed)
+        return Ported(wrapped(self.text, self.original), self.merged_rewrites(), todos, self.needed)
+
+    def merged_rewrites(self) -> list[Rewrite]:
+        """The rewrites, those of later passes on a line rewritten before joined to the first:
+        one a line, from what it was to what it is."""
+        merged: list[Rewrite] = []
+        for rewrite in self.rewrites:
+            chained = next((index for index, earlier in enumerate(merged) if earlier.line == rewrite.line
+                            and earlier.after and earlier.after == rewrite.before), None)
+            if chained is None:
+                merged.append(rewrite)
+                continue
+            earlier = merged[chained]
+            keys = ", ".join(dict.fromkeys(earlier.rule.split(", ") + rewrite.rule.split(", ")))
+            merged[chained] = Rewrite(rewrite.line, keys, earlier.before, rewrite.after)
+        return sorted(merged, key=lambda r: r.line)
 
     def pass_includes(self) -> None:
         edits = []
@@ -326,8 +361,10 @@ class _Rewriter:
                 if end > 0:
                     yield match, opening, end
 
+        # `ros::Time now = ros::Time::now();`: there `now()` would call the variable, this->now() the node's
+        node_now = "this->now()" if re.search(r"[\w>&*]\s+now\s*[=;{(,)]", masked) else "now()"
         for match in re.finditer(r"\bros::Time::now\s*\(\s*\)", masked):
-            edits.append(_Edit(match.start(), match.end(), "now()" if self.in_class(match.start())
+            edits.append(_Edit(match.start(), match.end(), node_now if self.in_class(match.start())
                                else "rclcpp::Clock().now()", "cpp.now"))
         for match, opening, end in call(r"\bros::Duration\s*\("):
             args = arguments(masked, opening, end)
@@ -357,6 +394,14 @@ class _Rewriter:
             edits.append(_Edit(match.start(), match.end(), "!rclcpp::ok()", "cpp.ok"))
         for match in re.finditer(r"\bros::shutdown\s*\(\s*\)", masked):
             edits.append(_Edit(match.start(), match.end(), "rclcpp::shutdown()", "cpp.ok"))
+        for match in STAMP.finditer(masked):
+            before, after = masked[:match.start()], masked[match.end():]
+            if TIME_OPERATOR_BEFORE.search(before) or TIME_OPERATOR_AFTER.match(after):
+                edits.append(_Edit(match.start(), match.end(), f"rclcpp::Time({self.text[match.start():match.end()]})",
+                                   "cpp.stamp_time"))
+            elif re.match(r"\s*\.\s*nsec\b", after):
+                field = re.match(r"\s*\.\s*nsec\b", after)
+                edits.append(_Edit(match.end(), match.end() + field.end(), ".nanosec", "cpp.stamp_fields"))
         for match in re.finditer(r"\.\s*toSec\s*\(\s*\)", masked):
             edits.append(self.seconds_of(match, "seconds()"))
         for match in re.finditer(r"\.\s*toNSec\s*\(\s*\)", masked):
@@ -541,9 +586,15 @@ class _Rewriter:
             body = self.goal_calls(body)
         if entry.method == "on_{id}_result":
             state = re.escape(names[0])
-            body = re.sub(rf"\b{state}\s*==\s*actionlib::SimpleClientGoalState::(\w+)",
-                          lambda m: (f"wrapped_result.code == rclcpp_action::ResultCode::{GOAL_STATES[m[1]]}"
-                                     if m[1] in GOAL_STATES else m[0]), body)
+            body = self.body_rule(body, line, rf"\b{state}\s*==\s*actionlib::SimpleClientGoalState::(\w+)",
+                                  lambda m: (f"wrapped_result.code == rclcpp_action::ResultCode::{GOAL_STATES[m[1]]}"
+                                             if m[1] in GOAL_STATES else m[0]), "cpp.goal_state")
+            code = "std::to_string(static_cast<int>(wrapped_result.code))"
+            spelled = self.body_rule(body, line, rf"\b{state}\s*\.\s*toString\s*\(\s*\)", lambda m: code,
+                                     "cpp.goal_state")
+            if spelled != body:
+                body = spelled
+                self.needed.add("<string>")
             body = re.sub(rf"\n[ \t]*\(void\)\s*{re.escape(names[1])};[ \t]*(?=\n)", "", body)
         prologue = [line.format(*names) for index, line in enumerate(entry.prologue)
                     if line and re.search(rf"\b{re.escape(names[index])}\b", mask(body))]
@@ -552,6 +603,20 @@ class _Rewriter:
             prologue = [line for line in prologue if re.search(rf"\b{re.escape(names[0])}\b", mask(body))]
         if prologue:
             body = "".join(f"\n{indent}{line}" for line in prologue) + body
+        return body
+
+    def body_rule(self, body: str, line: int, pattern: str, replace, key: str) -> str:
+        """`body` (starting on `line`) with each match of `pattern` replaced, each line it changes recorded."""
+        for match in reversed(list(re.finditer(pattern, mask(body)))):
+            new = replace(re.match(pattern, body[match.start():]) or match)
+            if new == match[0]:
+                continue
+            start, end = body.rfind("\n", 0, match.start()) + 1, body.find("\n", match.end())
+            before = body[start:end]
+            body = body[:match.start()] + new + body[match.end():]
+            after = body[start:body.find("\n", match.start() + len(new))]
+            self.rewrites.append(Rewrite(line + body.count("\n", 0, match.start()), key, " ".join(before.split()),
+                                         " ".join(after.split())))
         return body
 
     def goal_calls(self, body: str) -> str:
@@ -664,6 +729,67 @@ class _Rewriter:
                                                                             break_on_hyphens=False)]
             lines[line - 1:line - 1] = comments
         self.text = "\n".join(lines)
+
+
+_STRING = re.compile(r'"(?:[^"\\\n]|\\.)*"')
+_COMMENT = re.compile(r"//|/\*")
+
+
+def wrapped(text: str, unchanged: set[str]) -> str:
+    """`text` with each line a rewrite made longer than cpplint's 100 columns broken as uncrustify
+    breaks ROS 2 code (rna.dialects.lines): after the call's opening bracket, then as many of its
+    arguments a line as fit, a long string argument cut after its spaces. A line as long before the
+    port is the user's, and one that cannot be broken so (a comment on it, no call) stays as it is."""
+    out, level = [], 0
+    for line, masked in zip(text.split("\n"), mask(text).split("\n"), strict=True):
+        inside = level > 0
+        level = max(level + open_brackets(masked), 0)
+        if breaking.columns(line, "cpp") <= WIDTH or line in unchanged or masked.lstrip().startswith("#"):
+            out.append(line)
+            continue
+        marked = _marked(line, masked, inside)
+        out += breaking.fit_line(marked, "cpp", inside=inside) if marked else [line]
+    return "\n".join(out)
+
+
+def _marked(line: str, masked: str, inside: bool) -> str | None:
+    """The line with rna.dialects.lines' markers where it may break: after the opening bracket of
+    its first call (unless it continues an open one) and the commas between that call's
+    arguments, and after the spaces of the string literals among them; None when it has none."""
+    if _COMMENT.search(_STRING.sub(lambda m: " " * len(m[0]), line)):
+        return None
+    level = 0  # the depth of the arguments a line breaks between
+    if not inside:
+        # the call the statement ends with (a condition's || and && uncrustify breaks otherwise)
+        call = re.search(r"(?:\b(?!(?:if|while|for|switch|return)\b)\w+|>)\s*\(", masked)
+        if call is None or open_brackets(masked[:call.end() - 1]) != 0:
+            return None
+        end = closing(masked, call.end() - 1)
+        if end < 0 or not re.fullmatch(r"\s*(;|\{|\)\s*;)?\s*", masked[end + 1:]):
+            return None
+        level = 1
+    breaks, splits, depth = [], [], 0
+    if not inside:
+        breaks.append(call.end())
+    for index, char in enumerate(masked):
+        if char in "([{":
+            depth += 1
+        elif char in ")]}":
+            depth -= 1
+            if depth < level:
+                break
+        elif char == "," and depth == level and (inside or index >= call.end()):
+            breaks.append(index + 1 + (masked[index + 1:index + 2] == " "))
+        elif masked.startswith("<< ", index) and depth == level and (inside or index >= call.end()):
+            breaks.append(index + 3)
+    for literal in _STRING.finditer(line):
+        whole = re.search(r"[(,]\s*$", line[:literal.start()]) and re.match(r"\s*[,)]", line[literal.end():])
+        if whole and open_brackets(masked[:literal.start()]) == level and (inside or literal.start() >= call.end()):
+            splits += [index + 1 for index in range(literal.start() + 1, literal.end() - 2) if line[index] == " "]
+    if not breaks and not splits:
+        return None
+    marks = {**{index: breaking.SPLIT for index in splits}, **{index: breaking.BREAK for index in breaks}}
+    return "".join(marks.get(index, "") + char for index, char in enumerate(line)) + marks.get(len(line), "")
 
 
 def port(text: str, context: Context = Context()) -> Ported:

@@ -16,8 +16,10 @@ logging goes to a named logger.
 from __future__ import annotations
 
 import ast
+import io
 import re
 import textwrap
+import tokenize
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
@@ -121,12 +123,12 @@ def _broken(line: str) -> list[str] | None:
     try:
         statement = ast.parse(line.strip()).body
     except SyntaxError:
-        return None
+        return _after_bracket(line, indent)  # a compound statement's first line (if ...:)
     if len(statement) != 1 or not isinstance(statement[0], (ast.Expr, ast.Assign)):
-        return None
+        return _after_bracket(line, indent)
     call = statement[0].value
     if not isinstance(call, ast.Call) or not (call.args or call.keywords) or call.end_col_offset != len(line.strip()):
-        return None
+        return _after_bracket(line, indent)
     code = line.strip()
     opening = call.func.end_col_offset
     if code[opening] != "(":
@@ -152,6 +154,34 @@ def _broken(line: str) -> list[str] | None:
     except SyntaxError:
         return None
     return result
+
+
+def _after_bracket(line: str, indent: str) -> list[str] | None:
+    """A statement that is no call broken after its first bracket (a hanging indent), if that makes it fit:
+    `age = (\n    now - Time.from_msg(stamp)).nanoseconds / 1e9`."""
+    code = line.strip()
+    try:
+        tokens = list(tokenize.generate_tokens(io.StringIO(code).readline))
+        if code.endswith(":"):
+            ast.parse(code + "\n    pass")
+        else:
+            ast.parse(code)
+    except (tokenize.TokenError, SyntaxError):
+        return None
+    opening = next((token for token, following in zip(tokens, tokens[1:], strict=False)
+                    if token.type == tokenize.OP and token.string in "([" and following.string not in ")]"), None)
+    if opening is None or opening.start[0] != 1:
+        return None
+    column = opening.end[1]
+    header = code.endswith(":")  # its block follows at 4 more: the continuation goes 8 deeper (E125)
+    lines = [indent + code[:column], indent + " " * (8 if header else 4) + code[column:].lstrip()]
+    if any(len(piece) > WIDTH for piece in lines) or not code[column:].strip():
+        return None
+    try:
+        ast.parse("\n".join(piece.strip() for piece in lines) + ("\n    pass" if header else ""))
+    except SyntaxError:
+        return None
+    return lines
 
 
 def _cut_literal(literal: str, room: int) -> list[str] | None:
@@ -596,6 +626,8 @@ class _Rewriter:
             if self.qualified(node.operand.func) in ("rospy.is_shutdown", "rospy.core.is_shutdown",
                                                      "rospy.core.is_shutdown_requested"):
                 return self.rewrote(node, "py.is_shutdown", self._ok(node))
+        if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub)) and self._stamp(node):
+            return self._time_to_stamp(node)
         if isinstance(node, ast.Attribute):
             return self._attribute(node)
         if isinstance(node, ast.Name):
@@ -618,6 +650,8 @@ class _Rewriter:
         return "rclpy.ok()"
 
     def _name(self, node: ast.Name) -> str | None:
+        if isinstance(node.ctx, ast.Load) and self._stamp(node) and self._holds_time(node):
+            return self.rewrote(node, "py.stamp_time", f"{node.id}.to_msg()")
         if node.id in self.types and isinstance(node.ctx, ast.Load):
             spelled = self.types[node.id]
             key = "py.srv_types" if spelled.endswith(SERVICE_PARTS) else "py.action_types"
@@ -651,7 +685,21 @@ class _Rewriter:
         if node.attr in ("secs", "nsecs") and (_dotted(value) or "").split(".")[-1] == "stamp":
             new = {"secs": "sec", "nsecs": "nanosec"}[node.attr]
             return self.rewrote(node, "py.stamp_fields", f"{self.atom(value)}.{new}")
+        if node.attr == "stamp" and isinstance(node.ctx, ast.Load) and self._time_operand(node):
+            self.needed.add("rclpy.time:Time")
+            return self.rewrote(node, "py.stamp_time", f"Time.from_msg({self.atom(value)}.stamp)")
         return None
+
+    def _time_operand(self, node: ast.AST) -> bool:
+        """Whether `node` (a message's stamp) is an operand of time arithmetic or of a comparison:
+        a rospy.Time in ROS 1, a message in ROS 2, which rclpy's Time does not take."""
+        parent = self.parents.get(id(node))
+        if isinstance(parent, ast.BinOp):
+            return isinstance(parent.op, (ast.Add, ast.Sub))
+        if isinstance(parent, ast.Compare):
+            ordered = all(isinstance(op, (ast.Lt, ast.LtE, ast.Gt, ast.GtE, ast.Eq, ast.NotEq)) for op in parent.ops)
+            return ordered and not any(isinstance(side, ast.Constant) for side in (parent.left, *parent.comparators))
+        return False
 
     def _import(self, node: ast.Import | ast.ImportFrom) -> str | None:
         if isinstance(node, ast.Import):
@@ -923,7 +971,7 @@ class _Rewriter:
 
     # time
 
-    def _stamp(self, node: ast.Call) -> bool:
+    def _stamp(self, node: ast.AST) -> bool:
         """Whether the time this call makes fills a message's stamp (wants .to_msg())."""
         parent = self.parents.get(id(node))
         if isinstance(parent, ast.Assign) and parent.value is node:
@@ -931,6 +979,28 @@ class _Rewriter:
         if isinstance(parent, ast.keyword):
             return parent.arg == "stamp"
         return False
+
+    def _holds_time(self, node: ast.Name) -> bool:
+        """Whether the function `node` is in assigns its name a rospy time (now(), a Time, their sums)."""
+        function = self.function(node)
+        for inner in ast.walk(function) if function is not None else ():
+            if isinstance(inner, ast.Assign) and any(isinstance(target, ast.Name) and target.id == node.id
+                                                     for target in inner.targets):
+                made = [call for call in ast.walk(inner.value) if isinstance(call, ast.Call)
+                        and self.qualified(call.func) in ("rospy.Time.now", "rospy.get_rostime", "rospy.Time",
+                                                          "rospy.Time.from_sec")]
+                if made:
+                    return True
+        return False
+
+    def _time_to_stamp(self, node: ast.BinOp) -> str | None:
+        """Time arithmetic that fills a message's stamp: an rclpy Time, which a stamp takes as a message."""
+        times = [inner for inner in ast.walk(node) if (isinstance(inner, ast.Call) and self.qualified(inner.func) in (
+            "rospy.Time.now", "rospy.get_rostime")) or (isinstance(inner, ast.Attribute) and inner.attr == "stamp")]
+        if not times:
+            return None
+        start, end = self.span(node)
+        return self.rewrote(node, "py.stamp_time", f"({self.splice(node, start, end)}).to_msg()")
 
     def _call_rospy_Time_now(self, node: ast.Call) -> str:
         after = f"{self.clock(node)}.now()" + (".to_msg()" if self._stamp(node) else "")

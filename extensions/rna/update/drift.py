@@ -3,9 +3,10 @@
 A node's user file is the user's once edited: the update never rewrites it. When the
 answers change what that code builds on (the message type of a callback it overrides, a
 callback it overrides that is gone: a build error in C++, dead code in Python; lifecycle,
-component or diagnostics switched, the license its header states), the update says so in
-its summary and writes the new starter beside the file, under a name no build tool or
-linter picks up, for the user to compare and port.
+component or diagnostics switched, the license its header states), or the template's base
+file does (a name the user's code imports from it is gone; an executor that main() does not
+spin the node on), the update says so in its summary and writes the new starter beside the
+file, under a name no build tool or linter picks up, for the user to compare and port.
 """
 
 from __future__ import annotations
@@ -69,6 +70,28 @@ def reasons(old: Package, new: Package, name: str, code: str, was: str | None = 
     return found
 
 
+_DEFINED = re.compile(r"^(?:class|def) (\w+)", re.MULTILINE)
+
+
+def base_reasons(before: Node, after: Node, code: str, old_base: str | None, new_base: str | None) -> list[str]:
+    """What node `after`'s user code must follow from its base file: names it imports from the old
+    base module that the new one no longer defines (Python), and an executor its main() would not spin on."""
+    found = []
+    if after.is_python and old_base and new_base:
+        gone = sorted(set(_DEFINED.findall(old_base)) - set(_DEFINED.findall(new_base)))
+        used = [name for name in gone if re.search(rf"\b{re.escape(name)}\b", code)]
+        if used:
+            found.append(f"{posixpath.basename(after.base_file)} no longer has {', '.join(used)}, which your code "
+                         "uses: main() is a call of the base module's run() now")
+    if (before.executor, before.threads) != (after.executor, after.threads) and not after.component:
+        # What main() calls to spin the node on the executor its answers give it.
+        call = f"{after.class_name}::spin(" if after.is_cpp else "run("
+        if call not in code:
+            found.append(f"it spins on a {after.executor.replace('_', '-')} executor now, which main() gets by "
+                         f"calling {call})")
+    return found
+
+
 def port_edited_user_files(project: Project, old: Render, new: Render, packages: tuple[Package, Package],
                            report: Report, renamed: dict[str, str] | None = None) -> None:
     """Name each edited user file that must follow a change, with the new starter beside it.
@@ -87,6 +110,9 @@ def port_edited_user_files(project: Project, old: Render, new: Render, packages:
         if code is None or path not in new.files or not edited(project, old, source):
             continue  # an untouched starter follows the template itself (protect.py)
         found = reasons(old_package, new_package, node.name, code, was)
+        found += base_reasons(before, node, code, old.text(posixpath.normpath(posixpath.join(
+            old_package.dir, before.base_file))), new.text(posixpath.normpath(posixpath.join(
+                new_package.dir, node.base_file))))
         if found:
             starter = path + STARTER_SUFFIX
             project.write(starter, new.text(path))

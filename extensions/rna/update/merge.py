@@ -10,6 +10,7 @@ them both. Everything else stays a conflict, marked as Copier marks them.
 
 from __future__ import annotations
 
+import difflib
 import re
 import subprocess
 import tempfile
@@ -70,6 +71,39 @@ def merge3(ours: str, base: str, theirs: str) -> tuple[str, bool]:
         else:
             merged.append(line)
     return "\n".join(merged), conflicted
+
+
+def sides(text: str) -> tuple[str, str]:
+    """(the user's side, the template's side) of a text merge3 left conflicts in."""
+    ours, theirs, side = [], [], None
+    for line in text.split("\n"):
+        if line == OURS:
+            side = "ours"
+        elif side == "ours" and line == THEIRS:
+            side = "theirs"
+        elif side and line == END:
+            side = None
+        else:
+            (ours if side != "theirs" else []).append(line)
+            (theirs if side != "ours" else []).append(line)
+    return "\n".join(ours), "\n".join(theirs)
+
+
+def rejected(path: str, text: str) -> tuple[str, str]:
+    """A text with conflicts as `--conflict rej` leaves it: (the file with the user's side of each,
+    its .rej file: the template's changes left out, as a diff against that file)."""
+    ours, theirs = sides(text)
+    diff = difflib.unified_diff(ours.split("\n"), theirs.split("\n"), f"a/{path}", f"b/{path}", lineterm="")
+    return ours, "\n".join(diff) + "\n"
+
+
+def write_conflicted(project: Project, path: str, text: str, like: str | None = None) -> bool:
+    """A merged text written as the update's --conflict asks: its conflicts marked in it (inline),
+    or the user's side in it and the template's in a .rej file beside it (rej); whether it was written."""
+    if project.conflict != "rej" or OURS not in text:
+        return project.write(path, text, like=like)
+    ours, diff = rejected(path, text)
+    return project.write(path, ours, like=like) and project.write(f"{path}.rej", diff)
 
 
 def settle_conflicts(project: Project, old: Render, new: Render, report: Report, skip: re.Pattern,

@@ -24,6 +24,7 @@ git history (the update needs a clean tree), which the summary says how to compa
 
 from __future__ import annotations
 
+import dataclasses
 import posixpath
 import re
 
@@ -32,7 +33,7 @@ from ..catalogue import load as load_catalogue
 from ..dialects import dialect
 from ..model import Action, Node, Package, Service, Timer, Topic
 from ..port import api, build, code, cpp, python
-from . import config_merge, merge
+from . import config_merge, merge, renames
 from .project import Project, Render
 from .protect import edited
 from .summary import Ported, Report
@@ -168,17 +169,28 @@ def port_node_files(project: Project, old: Render, new: Render, packages: tuple[
         mine = project.committed(source)
         if mine is None:
             continue  # not text: kept as it is
+        if before.name != node.name:  # renamed in this update: the class, base and node name, as renames does
+            mine, old_starter = (renames.renamed_code(text, before, node, None, None) for text in (mine, old_starter))
         if node.is_python:
-            result = code.port_python(mine, old_starter, new_starter, python_context(before, node, old_package))
+            context = python_context(before, node, old_package)
+            if before.name != node.name:
+                context = dataclasses.replace(context, base_class=node.base_class_name, logger=node.name)
+            result = code.port_python(mine, old_starter, new_starter, context)
         else:
             base = new.text(_in(new_package, node.base_file)) or ""
-            result = code.port_cpp(mine, old_starter, new_starter,
-                                   cpp_context(before, node, old_package, new_starter, base))
-        if not project.write(target, result.text, like=source):  # in the user's encoding and line ends
+            context = cpp_context(before, node, old_package, new_starter, base)
+            if before.name != node.name:
+                header = renames.renamed_code(before.base_file.removeprefix("include/"), before, node, None, None)
+                context = dataclasses.replace(context, class_name=node.class_name, base_class=node.base_class_name,
+                                              logger=node.name,
+                                              headers=((header, node.base_file.removeprefix("include/")),))
+            result = code.port_cpp(mine, old_starter, new_starter, context)
+        _settled(project, source, target)
+        # in the user's encoding and line ends; a conflict as --conflict says (markers, or a .rej file)
+        if not merge.write_conflicted(project, target, result.text, like=source):
             continue
         if source != target:
             project.remove(source)
-        _settled(project, source, target)
         report.ported.append(Ported(target, source, _rewrite_lines(result), result.todos))
         handled |= {source, target}
     return handled
@@ -190,11 +202,15 @@ def _languages(package: Package) -> tuple[str, ...]:
 
 
 def _carried(project: Project, old: Render, new: Render, source: str, target: str, report: Report,
-             carry) -> set[str]:
-    """A generated file the user edited, carried by `carry(mine, generated, fresh)` from `source` to `target`."""
+             carry, renamed=None) -> set[str]:
+    """A generated file the user edited, carried by `carry(mine, generated, fresh)` from `source` to `target`;
+    `renamed(text)` first names the nodes the update renames by their new names, in the user's text and
+    the old render alike."""
     mine, generated, fresh = project.committed(source), old.text(source), new.text(target)
     if mine is None or generated is None or fresh is None or mine == generated:
         return set()
+    if renamed is not None:
+        mine, generated = renamed(mine), renamed(generated)
     result = carry(mine, generated, fresh)
     if not project.write(target, result.text, like=source):
         return set()
@@ -205,10 +221,26 @@ def _carried(project: Project, old: Render, new: Render, source: str, target: st
     return {source, target}
 
 
+def _new_names(packages: tuple[Package, Package], renamed: dict[str, str]) -> dict[str, str]:
+    """Old name -> new name of each node this update renames (`renamed`: new name -> old name)."""
+    old_package, new_package = packages
+    return {before: after for after, before in renamed.items() if before != after
+            and _node(old_package, before) is not None and _node(new_package, after) is not None}
+
+
+def _renaming(packages: tuple[Package, Package], renamed: dict[str, str]):
+    """What names the renamed nodes by their new names in a build or launch file's lines (rna.update.renames)."""
+    names = _new_names(packages, renamed)
+    if not names:
+        return None
+    return lambda text: renames.renamed_lines(text, names, packages[0].name)
+
+
 def port_build_files(project: Project, old: Render, new: Render, packages: tuple[Package, Package],
-                     report: Report) -> set[str]:
+                     report: Report, renamed: dict[str, str] | None = None) -> set[str]:
     """The user's lines of CMakeLists.txt and package.xml (the package's, its interfaces package's)."""
     old_package, new_package = packages
+    names = _new_names(packages, renamed or {})
     handled = set()
     folders = [(old_package.dir, new_package.dir, True)]
     if old_package.interfaces_package and new_package.interfaces_package:
@@ -220,11 +252,12 @@ def port_build_files(project: Project, old: Render, new: Render, packages: tuple
         new_cmake = posixpath.normpath(posixpath.join(new_folder, "CMakeLists.txt"))
         fresh = new.text(new_cmake) or ""
         context = build.CMakeContext(
-            old_package.name, tuple(node.name for node in old_package.cpp_nodes) if nodes else (),
+            old_package.name, tuple(names.get(node.name, node.name) for node in old_package.cpp_nodes) if nodes else (),
             frozenset(re.findall(r"find_package\(\s*([\w-]+)", fresh)), languages)
         handled |= _carried(project, old, new, cmake, new_cmake, report,
                             lambda mine, generated, fresh, context=context: build.carry_cmake(mine, generated, fresh,
-                                                                                              context))
+                                                                                              context),
+                            _renaming(packages, renamed or {}) if nodes else None)
         handled |= _carried(project, old, new, xml, posixpath.normpath(posixpath.join(new_folder, "package.xml")),
                             report, lambda mine, generated, fresh: build.carry_package_xml(mine, generated, fresh,
                                                                                           languages))
@@ -234,11 +267,18 @@ def port_build_files(project: Project, old: Render, new: Render, packages: tuple
 ROS1_LAUNCH = ".launch"  # roslaunch's files; ROS 2 reads XML ones named *.launch.xml
 
 
-def launch_context(project: Project, packages: tuple[Package, Package]) -> build.LaunchContext:
-    """The package's nodes' executables and launch files, ROS 1's -> ROS 2's."""
+def launch_context(project: Project, packages: tuple[Package, Package],
+                   renamed: dict[str, str] | None = None) -> build.LaunchContext:
+    """The package's nodes' executables and launch files, ROS 1's -> ROS 2's (a renamed node's: its new one)."""
     old_package, new_package = packages
-    executables = tuple((node.executable, next(n.executable for n in new_package.nodes if n.name == node.name))
-                        for node in old_package.nodes if any(n.name == node.name for n in new_package.nodes))
+    names = _new_names(packages, renamed or {})
+    executables = tuple((ros1, next(n.executable for n in new_package.nodes
+                                    if n.name == names.get(node.name, node.name)))
+                        for node in old_package.nodes
+                        if any(n.name == names.get(node.name, node.name) for n in new_package.nodes)
+                        # a renamed node's as the user wrote it, and as its lines renamed name it
+                        for ros1 in dict.fromkeys((node.executable, renames.renamed_lines(
+                            node.executable, names, old_package.name))))
     launch = f"{_in(old_package, 'launch')}/"
     files = {path[len(launch):]: path[len(launch):] + ".xml" for path in project.committed_files
              if path.startswith(launch) and path.endswith(ROS1_LAUNCH) and "/" not in path[len(launch):]}
@@ -248,24 +288,25 @@ def launch_context(project: Project, packages: tuple[Package, Package]) -> build
 
 
 def port_launch_file(project: Project, old: Render, new: Render, packages: tuple[Package, Package],
-                     report: Report) -> set[str]:
+                     report: Report, renamed: dict[str, str] | None = None) -> set[str]:
     """The user's lines of the roslaunch file, in the ROS 2 launch file."""
     old_package, new_package = packages
     if old_package.target == "node":
         return set()
-    context = launch_context(project, packages)
+    context = launch_context(project, packages, renamed)
     return _carried(project, old, new, _in(old_package, old_package.launch_file),
                     _in(new_package, new_package.launch_file), report,
-                    lambda mine, generated, fresh: build.carry_launch(mine, generated, fresh, context))
+                    lambda mine, generated, fresh: build.carry_launch(mine, generated, fresh, context),
+                    _renaming(packages, renamed or {}))
 
 
 def port_own_launch_files(project: Project, old: Render, packages: tuple[Package, Package],
-                          report: Report) -> set[str]:
+                          report: Report, renamed: dict[str, str] | None = None) -> set[str]:
     """The user's own roslaunch files in the package's launch/, as ROS 2 XML launch files beside it."""
     old_package, _ = packages
     if old_package.target == "node":
         return set()
-    context = launch_context(project, packages)
+    context = launch_context(project, packages, renamed)
     launch = f"{_in(old_package, 'launch')}/"
     handled = set()
     for path in sorted(project.committed_files):
@@ -277,7 +318,8 @@ def port_own_launch_files(project: Project, old: Render, packages: tuple[Package
         mine = project.committed(path)
         if mine is None:
             continue  # not text: left as it is
-        result = build.port_launch_file(mine, context)
+        renaming = _renaming(packages, renamed or {})
+        result = build.port_launch_file(renaming(mine) if renaming else mine, context)
         if not project.write(target, result.text, like=path):
             continue
         project.remove(path)
@@ -287,12 +329,13 @@ def port_own_launch_files(project: Project, old: Render, packages: tuple[Package
 
 
 def port_config_files(project: Project, old: Render, new: Render, packages: tuple[Package, Package],
-                      report: Report) -> set[str]:
-    """Each tuned config file in `ros__parameters` form, the user's values, lines and comments kept."""
+                      report: Report, renamed: dict[str, str] | None = None) -> set[str]:
+    """Each tuned config file in `ros__parameters` form, the user's values, lines and comments kept
+    (a renamed node's in its new name's file)."""
     old_package, new_package = packages
     handled = set()
     for node in new_package.nodes:
-        before = _node(old_package, node.name)
+        before = _node(old_package, (renamed or {}).get(node.name, node.name))
         if before is None:
             continue
         source, target = _in(old_package, before.config_file), _in(new_package, node.config_file)
@@ -302,6 +345,7 @@ def port_config_files(project: Project, old: Render, new: Render, packages: tupl
         head = next((index for index, line in enumerate(fresh.split("\n")) if line.startswith("/**:")), 0)
         ours, base = build.ros2_config(mine, head), build.ros2_config(generated, head)
         text, conflicted = merge.merge3(ours, base, fresh)
+        _settled(project, source, target)  # Copier's leftovers go before this step writes its own .rej
         if conflicted:
             descriptions = (config_merge.descriptions_of(old_package, source),
                             config_merge.descriptions_of(new_package, target))
@@ -310,8 +354,7 @@ def port_config_files(project: Project, old: Render, new: Render, packages: tupl
                 config_merge.write_merged(project, target, merged)
                 text = None
         if text is not None:
-            project.write(target, text)
-        _settled(project, source, target)
+            merge.write_conflicted(project, target, text)
         report.ported.append(Ported(target, None, ("its parameters under /**: ros__parameters:",), 0))
         handled |= {source, target}
     return handled
@@ -360,14 +403,20 @@ def port_package(project: Project, old: Render, new: Render, packages: tuple[Pac
     """ROS 1 -> ROS 2: the user's files carried and ported; returns the paths handled here."""
     if not porting(packages):
         return set()
-    handled = port_node_files(project, old, new, packages, report, renamed or {})
+    renamed = renamed or {}
+    handled = port_node_files(project, old, new, packages, report, renamed)
     if packages[0].target == "package":  # a node's own package is the user's: only the node is ported
         handled |= port_own_code(project, old, new, packages, report)
-        handled |= port_build_files(project, old, new, packages, report)
-    handled |= port_launch_file(project, old, new, packages, report)
-    handled |= port_own_launch_files(project, old, packages, report)
-    handled |= port_config_files(project, old, new, packages, report)
+        handled |= port_build_files(project, old, new, packages, report, renamed)
+    handled |= port_launch_file(project, old, new, packages, report, renamed)
+    handled |= port_own_launch_files(project, old, packages, report, renamed)
+    handled |= port_config_files(project, old, new, packages, report, renamed)
+    names = _new_names(packages, renamed)
+    if names and packages[0].target == "package":
+        report.notes.append(f"Your lines of the build and launch files naming {', '.join(sorted(names))} "
+                            f"name {', '.join(names[name] for name in sorted(names))}, as the nodes are renamed.")
+    report.review = "git add -A . && git diff --staged -M HEAD"
     report.notes.append(
-        "Ported from ROS 1: the ROS 1 package is your last commit. Compare each file with it: "
-        "git add -A . && git diff --staged -M HEAD (-M pairs a moved file with the file it was).")
+        f"Ported from ROS 1: the ROS 1 package is your last commit. Compare each file with it: "
+        f"{report.review} (-M pairs a moved file with the file it was).")
     return handled

@@ -210,6 +210,12 @@ class Project:
                 changed.add(name)
         return added, changed, removed
 
+    def line_ends_as_checked_out(self) -> None:
+        """Give the files the update wrote the line ends git checks them out with (CRLF in a
+        checkout made so by .gitattributes or core.autocrlf; Copier writes LF)."""
+        added, changed, _ = self.changed_files()
+        files.as_checked_out(self.root, sorted(added | changed))
+
     def resolve_in_index(self, path: str) -> None:
         """Clear a conflict Copier recorded in the index for a file settled here."""
         git(self.root, "reset", "-q", "--", path, check=False)

@@ -15,7 +15,7 @@ from .. import distros, files
 from ..answers import FIRST_COPY, AnswerError
 
 def switch_error(previous: Mapping, answers: Mapping) -> AnswerError | None:
-    """A change from ROS 2 back to ROS 1, which no update makes.
+    """A change from ROS 2 back to ROS 1, which no update makes (or a port that renames the package).
 
     ROS 1 -> ROS 2 is a port (rna/update/port.py): the template's files are made for ROS 2
     and the user's code is carried over by documented rules. The other way round there is
@@ -23,11 +23,30 @@ def switch_error(previous: Mapping, answers: Mapping) -> AnswerError | None:
     not refused either: the update makes it.
     """
     before, after = previous.get("ros_distro"), answers.get("ros_distro")
-    if not before or not after or distros.generation(before) <= distros.generation(after):
+    if not before or not after or distros.generation(before) < distros.generation(after):
+        return port_rename_error(previous, answers)
+    if distros.generation(before) == distros.generation(after):
         return None
     return AnswerError("ros_distro", (
         f"{after} is ROS 1 and this package is ROS 2 ({before}): an update ports ROS 1 to ROS 2, never back "
         f"(nothing was written). Keep ros_distro {before}"))
+
+
+def port_rename_error(previous: Mapping, answers: Mapping) -> AnswerError | None:
+    """A package renamed in the update that ports it to ROS 2.
+
+    The port carries the user's files where the package is, and the rename moves them where it
+    goes: together, the user's own files would stay behind in the old folder. Nodes may be
+    renamed in a port (rna/update/port.py), the package in an update of its own.
+    """
+    before, after = previous.get("package_name"), answers.get("package_name")
+    if not before or not after or before == after or previous.get("target", "package") != "package":
+        return None
+    if distros.generation(previous.get("ros_distro")) != 1 or distros.generation(answers.get("ros_distro")) != 2:
+        return None
+    return AnswerError("package_name", (
+        f"the update that ports {before} to ROS 2 keeps its name: rename it to {after} in an update of its own, "
+        "before or after the port (nothing was written)"))
 
 
 def port_error(previous: Mapping, answers: Mapping, package_xml: Mapping | None) -> AnswerError | None:

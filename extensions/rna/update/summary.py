@@ -37,6 +37,7 @@ class Report:
     merged: set[str] = field(default_factory=set)  # files this step merged itself
     unwritable: list[tuple[str, str]] = field(default_factory=list)  # (path, why) a change could not be written
     ported: list[Ported] = field(default_factory=list)  # files a port to ROS 2 rewrote (rna/update/port.py)
+    review: str = "git diff HEAD"  # how to see what the update did (a port moves files: git diff -M)
 
     @property
     def todos(self) -> int:
@@ -98,6 +99,10 @@ def _ported_lines(ported: list[Ported]) -> list[str]:
         for rewrite in item.rewrites:
             lines += textwrap.wrap(rewrite, WIDTH, initial_indent=" " * 6, subsequent_indent=" " * 8,
                                    break_on_hyphens=False, break_long_words=False)
+    if todos:
+        lines += textwrap.wrap("    each TODO(port) is an item for you: a line of yours no rule ports, left as it was "
+                               "under a comment naming its ROS 2 counterpart (git grep -n 'TODO(port)' lists them).",
+                               WIDTH, subsequent_indent=" " * 6)
     return lines
 
 
@@ -132,15 +137,15 @@ def summary(report: Report, change: Changes, versions: str) -> str:
             lines += _item_lines(path, why)
     for problem in report.problems:
         lines += textwrap.wrap(f"  {problem}", WIDTH, subsequent_indent="    ")
-    lines += textwrap.wrap(outcome(report.items), WIDTH)
+    lines += textwrap.wrap(outcome(report.items, report.review), WIDTH)
     return "\n".join(lines)
 
 
-def outcome(items: int) -> str:
+def outcome(items: int, review: str = "git diff HEAD") -> str:
     """The summary's last words: done, or done with items for the user (what exit 1 means here)."""
     if not items:
-        return "Done. Review with `git diff HEAD`, then commit."
+        return f"Done. Review with `{review}`, then commit."
     which = "it is" if items == 1 else "they are"
-    return (f"Done, with {items} item{'s' if items > 1 else ''} for you (above): review with `git diff HEAD`, and "
+    return (f"Done, with {items} item{'s' if items > 1 else ''} for you (above): review with `{review}`, and "
             f"commit once {which} done. copier exits with status 1 to say so; its line \"Task ... returned "
             "non-zero exit status 1\" below means that, not a failure.")
