@@ -18,9 +18,9 @@ from pathlib import Path
 import yaml
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-import speedups  # noqa: E402 - next to this file
+import patches  # noqa: E402 - next to this file
 
-with speedups.template_modules(Path(__file__).resolve().parent):
+with patches.template_modules(Path(__file__).resolve().parent):
     from rna import build_package, files, integrate  # the template's own package, next to this file
 
 

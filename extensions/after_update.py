@@ -20,9 +20,9 @@ import yaml
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
-import speedups  # noqa: E402 - next to this file
+import patches  # noqa: E402 - next to this file
 
-with speedups.template_modules(HERE):
+with patches.template_modules(HERE):
     from rna import Package, build_package  # the template's own package, next to this file
     from rna.update import blocks, config_merge, drift, kept, merge, port, protect, rename_answers, renames
     from rna.update.project import Project, Render, git, render

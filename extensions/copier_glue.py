@@ -5,8 +5,9 @@ Copier loads this file by path (copier-template-extensions), afresh for each Jin
 environment (a copy makes one, an update four). The template's code is the package `rna`
 beside it, imported by its plain name; an update runs the old and the new template version
 in one process, so another checkout's modules are dropped from sys.modules first.
-Everything the template changes in Copier's, Jinja's and Python's behaviour to go faster
-is in speedups.py; copier_run.py keeps what one run found (the answers file, the models).
+Everything the template changes in another library's behaviour (Copier's, Jinja's,
+prompt_toolkit's, Python's) is a patch of patches/, switchable; copier_run.py keeps what
+one run found (the answers file, the answers given with --data checked, the models).
 """
 
 from __future__ import annotations
@@ -14,8 +15,6 @@ from __future__ import annotations
 import functools
 import getpass
 import json
-import os
-import shutil
 import sys
 from collections.abc import Mapping
 from pathlib import Path
@@ -26,11 +25,11 @@ from copier_template_extensions import ContextHook
 from jinja2 import pass_context
 
 _HERE = Path(__file__).resolve().parent
-_OWN_MODULES = ("rna", "speedups", "copier_run", "code_cache")
+_OWN_MODULES = ("rna", "patches", "copier_run")
 
 
 def _forget_other_checkouts() -> None:
-    for name in [name for name in sys.modules if name in _OWN_MODULES or name.startswith("rna.")]:
+    for name in [name for name in sys.modules if name.split(".")[0] in _OWN_MODULES]:
         origin = getattr(sys.modules[name], "__file__", None) or ""
         if not Path(origin).resolve().is_relative_to(_HERE):
             del sys.modules[name]
@@ -40,9 +39,9 @@ _forget_other_checkouts()
 sys.modules.pop("copier_run", None)  # its module state is one worker's: loaded afresh, as this glue is
 sys.path.insert(0, str(_HERE))
 try:
-    import speedups
+    import patches
 
-    with speedups.template_modules(_HERE):
+    with patches.template_modules(_HERE):
         import copier_run
         import rna
         import rna.configs
@@ -71,10 +70,6 @@ finally:
 _run = copier_run.Run()  # what this worker found: the answers file before it, the models made
 absolute_source = copier_run.absolute_source  # a filter: the answers to record, the template's path absolute
 
-# Copier's prompts show their lines and an answer's error whole, wrapped at the terminal's width.
-rna.terminal.show_whole_validation_errors()
-rna.terminal.fit_copiers_questions()
-
 
 def _answers(context) -> rna.Answers:
     return rna.Answers({key: context.get(key) for key in context.keys() if not key.startswith("_")})
@@ -98,7 +93,7 @@ def answer_error(context, question: str) -> str:
     if error is None and (previous := _run.previous_answers(context)) is not None:
         refused = rna.update.refusals.switch_error(previous, context)
         error = refused.message if refused and refused.question == question else None
-    # Shown whole under the prompt, wrapped at the terminal's width (rna/terminal.py).
+    # Shown whole under the prompt, wrapped at the terminal's width (the patch whole_errors).
     return error or ""
 
 
@@ -107,10 +102,8 @@ def _files_in_the_way(context, name: str, languages) -> list[str]:
     destination = (context.get("_copier_conf") or {}).get("dst_path")
     if destination is None or (Path(destination) / answers_file_name(context)).exists():
         return []
-    ros = rna.distros.generation(context.get("ros_distro"))
-    package = context.get("package_name")
-    return [path for language in languages for path in rna.layout.node_files(package, name, ros, language)
-            if (Path(destination) / path).exists()]
+    return rna.workspace.files_in_the_way(Path(destination), context.get("package_name"), name,
+                                          rna.distros.generation(context.get("ros_distro")), languages)
 
 
 @pass_context
@@ -163,7 +156,7 @@ def nodes_dialog(context) -> str:
         rules = rna.dialog.Rules(context.get("package_name") or "pkg", rna.update.resolve.build_type_of(context),
                                  answers.types)
         destination = (context.get("_copier_conf") or {}).get("dst_path")
-        found = _found(str(destination)) if destination is not None else ()
+        found = copier_run.interfaces_found(str(destination)) if destination is not None else ()
         own = {}
         for (kind, name) in answers.types.own:
             own.setdefault(kind, []).append(name)
@@ -199,13 +192,8 @@ def found_interfaces(context, kind: str | None = None) -> str:
     destination = (context.get("_copier_conf") or {}).get("dst_path")
     if destination is None:
         return ""
-    found = [name for name in _found(str(destination)) if kind is None or f"/{kind}/" in name]
+    found = [name for name in copier_run.interfaces_found(str(destination)) if kind is None or f"/{kind}/" in name]
     return "".join("\n" + line for line in rna.wording.found_lines(found))
-
-
-@functools.cache
-def _found(destination: str) -> tuple[str, ...]:
-    return tuple(rna.workspace.find_interfaces(Path(destination)))
 
 
 @pass_context
@@ -217,13 +205,8 @@ def existing_package(context) -> dict | None:
 
 @pass_context
 def answers_file_name(context) -> str:
-    """`.copier-answers.yml`, or for a node added to a package `.copier-answers.rna-<node>.yml`."""
-    if context.get("target") != "node":
-        return ".copier-answers.yml"
-    nodes = context.get("nodes") or [{}]
-    first = nodes[0] if isinstance(nodes, list) and nodes else {}
-    name = first.get("name") if isinstance(first, dict) else first
-    return f".copier-answers.rna-{name or context.get('node_name') or 'node'}.yml"
+    """copier.yml's `_answers_file`: one per package, or per node added to a package (rna/layout.py)."""
+    return rna.layout.answers_file_name(context.get("target"), context.get("nodes"), context.get("node_name"))
 
 
 @pass_context
@@ -243,12 +226,8 @@ def python_init_file(context, ros: int) -> str:
 
 
 def package_files(ros_distro: str | None = None) -> str:
-    """The files of a whole package, one per line, as `_exclude` patterns of the destination's root.
-
-    A catkin package keeps setup.py: a Python node's base class is a module the package
-    installs, and a package of scripts alone has none (`_skip_if_exists` keeps the user's)."""
-    kept = rna.layout.NODE_PACKAGE_FILES.get(rna.distros.generation(ros_distro), ())
-    return "\n".join("/" + path for path in rna.layout.PACKAGE_FILES if path not in kept)
+    """The files of a whole package, as `_exclude` patterns, for a node added to a package."""
+    return rna.layout.package_files_excluded(rna.distros.generation(ros_distro))
 
 
 @pass_context
@@ -256,8 +235,7 @@ def porting_from_ros1(context) -> bool:
     """Whether this update ports a ROS 1 package to ROS 2 (the build type then defaults to
     ament_cmake, which holds C++ and Python nodes alike, as catkin did)."""
     previous = _run.previous_answers(context)
-    return (previous is not None and rna.distros.generation(previous.get("ros_distro")) == 1
-            and rna.distros.generation(context.get("ros_distro")) == 2)
+    return previous is not None and rna.distros.ports(previous.get("ros_distro"), context.get("ros_distro"))
 
 
 def lab() -> dict:
@@ -270,15 +248,7 @@ def lab() -> dict:
 
 def git_config(key: str) -> str:
     """The user's git setting (user.name, user.email) as a default answer, or ""."""
-    return _git_user_settings().get(key, "")
-
-
-_git_user_settings = functools.cache(rna.git.user_settings)  # one git process a worker, for both defaults
-
-
-def copier_command() -> str:
-    """How the user runs this Copier again (rna/terminal.py), for the commands messages print."""
-    return rna.terminal.copier_command(dict(os.environ), sys.executable, shutil.which)
+    return copier_run.git_user_settings().get(key, "")
 
 
 class RnaExtension(ContextHook):
@@ -288,7 +258,7 @@ class RnaExtension(ContextHook):
 
     def __init__(self, environment):
         super().__init__(environment)
-        speedups.install(environment)
+        patches.install(environment)
         environment.globals.update(
             answer_error=answer_error, answers_file_name=answers_file_name, base_files=base_files,
             builds_interfaces=rna.distros.BUILDS_INTERFACES, languages=rna.distros.languages,
@@ -297,7 +267,7 @@ class RnaExtension(ContextHook):
             nodes_dialog=nodes_dialog, nodes_dialog_pending=nodes_dialog_pending,
             existing_package=existing_package, found_interfaces=found_interfaces, git_config=git_config,
             porting_from_ros1=porting_from_ros1, in_git_work_tree=rna.git.in_work_tree, lab=lab,
-            docs_url=rna.lab.docs_url, copier_command=copier_command, updating=updating,
+            docs_url=rna.lab.docs_url, copier_command=rna.terminal.copier_command, updating=updating,
             login_name=getpass.getuser, package_files=package_files,
             python_init_file=python_init_file, user_files=user_files,
             # Line-breaking markers (rna/dialects/lines.py).
@@ -347,7 +317,7 @@ class RnaExtension(ContextHook):
         elif phase == "migrate" and operation == "update":
             copier_run.point_to_kept_renders(context)
         if phase != "render":
-            _check_given_answers(context)
+            _stop(_run.given_answers_refusal(context))
             return
         previous = _run.previous_answers(context)
         # Outside a package's own answers (a copy, or the scratch renders of an update), renames are
@@ -357,8 +327,8 @@ class RnaExtension(ContextHook):
         if renamed is not None:
             raise UserMessageError(f"rna-template: invalid answer to 'nodes': {renamed} (nothing was written)")
         if previous is not None:  # an update: answers were in the destination before this run
-            _refuse_switch(previous, context)
-            _refuse_names_copier_cannot_update(context)
+            _stop(rna.update.refusals.switch_error(previous, context))
+            _stop(_run.undecodable_name_refusal(str(conf.get("dst_path"))))
             _run.keep_languages(context.get("nodes"), previous)
         answers = {key: context.get(key) for key in (*rna.answers.QUESTIONS, "copyright_year")}
         # Whether it is an update is part of the key: Copier renders some names before it
@@ -386,46 +356,6 @@ def _checked_package(context, previous: Mapping | None, answers: dict):
     return package
 
 
-def _check_given_answers(context) -> None:
-    """Answers given with --data or --data-file, checked before Copier reads them.
-
-    Copier checks a choice, or parses a YAML answer, itself when it reaches the question,
-    and a broken one ends in a traceback; this says the same in one line, first. A choice
-    that depends on other answers (a build type for the distro) is checked as soon as they
-    are known: given, in the answers file being updated, or answered before it.
-    """
-    conf = context.get("_copier_conf") or {}
-    given = conf.get("data") or {}
-    previous = _run.previous_answers(context) if given else None
-    if previous is not None:  # an update: before any other answer is read in the light of these
-        if "ros_distro" in given:
-            _refuse_switch(previous, given, conf.get("dst_path"))
-        _stop(rna.update.refusals.first_copy_error(given))
-    if not given:
-        return
-    checked = _run.given_answers_checked(given)
-    if len(checked) == len(given) or _inside_a_validator():
-        return
-    around = {key: context.get(key) for key in ("ros_distro", "build_type") if key in context.keys()}
-    try:
-        checked |= rna.answers.check_given(given, copier_run.question_types(str(conf.get("src_path"))), around,
-                                           skip=checked)
-    except rna.AnswerError as error:
-        raise UserMessageError(f"rna-template: {error}") from None
-
-
-def _inside_a_validator() -> bool:
-    """Whether Copier is rendering a question's validator, which turns any error into a
-    traceback ("Validation error for question ..."): a given answer is checked at the next
-    render instead (the question's own `when` comes before its answer is validated)."""
-    frame = sys._getframe(2)
-    while frame is not None:
-        if frame.f_code.co_name == "validate_answer":
-            return True
-        frame = frame.f_back
-    return False
-
-
 def _refuse_to_copy_over_a_package(context) -> None:
     """`copier recopy` (a copy, to Copier) or `copier copy` into a package this template made
     would replace the user's lines in every file they share with the template: stop first."""
@@ -433,26 +363,6 @@ def _refuse_to_copy_over_a_package(context) -> None:
         return
     name = (context.get("_copier_conf") or {}).get("answers_file")
     raise UserMessageError(f"rna-template: {rna.update.refusals.copy_over_error(name)}")
-
-
-def _refuse_names_copier_cannot_update(context) -> None:
-    """A file of the project whose name is not UTF-8 makes Copier's update fail half-way, after
-    it wrote the new version (copier._tools.normalize_git_path, 9.19): stop before it writes."""
-    destination = str((context.get("_copier_conf") or {}).get("dst_path"))
-    if destination not in _names_checked:
-        _names_checked[destination] = rna.update.refusals.undecodable_name(Path(destination))
-    if _names_checked[destination] is not None:
-        raise UserMessageError(f"rna-template: {rna.update.refusals.name_error(_names_checked[destination])}")
-
-
-_names_checked: dict[str, str | None] = {}
-
-
-def _refuse_switch(previous: Mapping, answers: Mapping, destination: object = None) -> None:
-    refused = rna.update.refusals.switch_error(previous, answers)
-    if refused is None and destination is not None:
-        refused = rna.update.refusals.port_error(previous, answers, rna.workspace.read_package(Path(destination)))
-    _stop(refused)
 
 
 def _stop(refused) -> None:

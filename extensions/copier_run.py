@@ -3,7 +3,9 @@
 Copier renders about ten strings per file, each with a render context of its own that
 the glue's context hook sees, so what the hook needs is found once: the answers file
 that was in the destination before the run, whether it was edited by hand, the answers
-given with --data checked, the package model of a set of answers. Copier loads the glue
+given with --data checked, the package model of a set of answers; and what the questions'
+defaults need once (the interfaces around the destination, the user's git settings).
+Copier loads the glue
 afresh for each of its workers (a copy has one, an update four), and the glue keeps one
 `Run` per load; what outlives a worker (parsed answers files, the update's kept renders)
 is process-wide.
@@ -28,8 +30,12 @@ import yaml
 
 import rna
 import rna.files
+import rna.git
+import rna.answers
 import rna.update.kept
+import rna.update.refusals
 import rna.update.resolve
+import rna.workspace
 
 
 def process_wide() -> types.ModuleType:
@@ -50,6 +56,7 @@ class Run:
         # and the questions of it checked so far
         self.models: dict[bytes | str, object] = {}
         self.last_key: list = [(), None, None]  # the answer objects, where, and their key
+        self.undecodable_names: dict[str, object] = {}
 
     def answers_found(self, conf: Mapping, name: str | None) -> tuple[str, object] | None:
         """The destination's answers file `name` as this worker first found it: (its text, what
@@ -90,6 +97,45 @@ class Run:
             self.given_checked.append((given, found))
         return found
 
+    def given_answers_refusal(self, context) -> object | None:
+        """Answers given with --data or --data-file, checked before Copier reads them: the first
+        rule they break (its text is the one-line error), or None.
+
+        Copier checks a choice, or parses a YAML answer, itself when it reaches the question,
+        and a broken one ends in a traceback; this says the same in one line, first. A choice
+        that depends on other answers (a build type for the distro) is checked as soon as they
+        are known: given, in the answers file being updated, or answered before it.
+        """
+        conf = context.get("_copier_conf") or {}
+        given = conf.get("data") or {}
+        if not given:
+            return None
+        previous = self.previous_answers(context)
+        if previous is not None:  # an update: before any other answer is read in the light of these
+            refused = rna.update.refusals.switch_error(previous, given) if "ros_distro" in given else None
+            if refused is None and "ros_distro" in given and conf.get("dst_path") is not None:
+                package = rna.workspace.read_package(Path(conf["dst_path"]))
+                refused = rna.update.refusals.port_error(previous, given, package)
+            if (refused := refused or rna.update.refusals.first_copy_error(given)) is not None:
+                return refused
+        checked = self.given_answers_checked(given)
+        if len(checked) == len(given) or _inside_a_validator():
+            return None
+        around = {key: context.get(key) for key in ("ros_distro", "build_type") if key in context.keys()}
+        try:
+            checked |= rna.answers.check_given(given, question_types(str(conf.get("src_path"))), around, skip=checked)
+        except rna.AnswerError as error:
+            return error
+        return None
+
+    def undecodable_name_refusal(self, destination: str) -> object | None:
+        """A file of the project whose name is not UTF-8 makes Copier's update fail half-way, after
+        it wrote the new version (copier._tools.normalize_git_path, 9.19): refused before it writes."""
+        if destination not in self.undecodable_names:
+            name = rna.update.refusals.undecodable_name(Path(destination))
+            self.undecodable_names[destination] = rna.update.refusals.name_error(name) if name is not None else None
+        return self.undecodable_names[destination]
+
     def keep_languages(self, nodes, previous: Mapping) -> None:
         """Nodes given without a language keep theirs: done in place, so once per list of nodes."""
         if self.languages_kept.get(id(nodes)) is not nodes:
@@ -115,6 +161,18 @@ class Run:
         key = _answers_key([answers, *where])
         self.last_key[:] = [values, where, key]
         return key
+
+
+def _inside_a_validator() -> bool:
+    """Whether Copier is rendering a question's validator, which turns any error into a
+    traceback ("Validation error for question ..."): a given answer is checked at the next
+    render instead (the question's own `when` comes before its answer is validated)."""
+    frame = sys._getframe(1)
+    while frame is not None:
+        if frame.f_code.co_name == "validate_answer":
+            return True
+        frame = frame.f_back
+    return False
 
 
 def _answers_key(values: list) -> bytes | str:
@@ -208,6 +266,15 @@ def question_types(template: str) -> dict[str, str]:
     """Each question's `type:` in the template's copier.yml (Copier casts given answers to it)."""
     return {name: spec.get("type", "str") for name, spec in copier_yml(template).items()
             if not name.startswith("_") and isinstance(spec, dict)}
+
+
+@functools.cache
+def interfaces_found(destination: str) -> tuple[str, ...]:
+    """The interfaces on disk around the destination (rna/workspace.py), looked for once a worker."""
+    return tuple(rna.workspace.find_interfaces(Path(destination)))
+
+
+git_user_settings = functools.cache(rna.git.user_settings)  # one git process a worker, for both defaults
 
 
 # ─── The update's renders, kept for the after-update step (rna/update/kept.py) ───

@@ -6,8 +6,9 @@ Tiers (pytest -m):
   ros1       ROS 1 from Debian packages: catkin builds, node pairs run against a master
   update     copier update flows and merge-safety scenarios (copier and git only)
   browser    the documentation site in headless Chromium from Debian's packages
-  compat     the speed-ups on and off, the newest Copier, copier-template-extensions and Jinja,
-             Python 3.12 and 3.13 (each in an environment of its own; tests/test_compat.py)
+  compat     the patches on and off, the newest Copier, copier-template-extensions, Jinja,
+             questionary and prompt_toolkit, Python 3.12 and 3.13 (each in an environment of
+             its own; tests/test_compat.py)
 
 Outside CI a ROS or compat tier that cannot set itself up is skipped with the reason; with
 CI=true it fails instead, so a green CI run always means every tier ran. Helpers live
@@ -91,7 +92,7 @@ def pytest_configure(config):
     config.addinivalue_line("markers", "ros1: builds and runs generated ROS 1 packages (Debian)")
     config.addinivalue_line("markers", "update: copier update flows and merge-safety scenarios")
     config.addinivalue_line("markers", "browser: the documentation site in headless Chromium (Debian)")
-    config.addinivalue_line("markers", "compat: speed-ups on and off, the newest libraries, Python 3.12 and 3.13")
+    config.addinivalue_line("markers", "compat: patches on and off, the newest libraries, Python 3.12 and 3.13")
 
 
 def pytest_sessionfinish(session, exitstatus):

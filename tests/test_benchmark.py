@@ -85,7 +85,7 @@ def test_each_speed_up_is_counted_off_alone_against_all_on(monkeypatch):
     extra = {"": 0, "strings": 5_000_000, "all": 90_000_000}
 
     def counted(run, bench, folder):
-        return 1_000_000_000 + extra[run.env[speedup_savings.speedups.SWITCH]]
+        return 1_000_000_000 + extra[run.env[speedup_savings.patches.SWITCH]]
 
     monkeypatch.setattr(speedup_savings, "_count_one", counted)
     counts = speedup_savings.count(None, cases, ("", "strings", "all"))

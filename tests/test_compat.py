@@ -1,17 +1,20 @@
-"""The compat tier: the speed-ups never change what users get, with the pinned libraries,
-with the newest releases of Copier, copier-template-extensions and Jinja, and under the
+"""The compat tier: the patches (extensions/patches/) never change what users get, with the
+pinned libraries, with the newest releases of the libraries they patch, and under the
 Pythons users run Copier with (Ubuntu 24.04's 3.12, Debian 13's 3.13).
 
-- Every example answers file renders byte for byte the same with the speed-ups on (a first
-  run, then a run that finds the compiled code kept) and off (RNA_TEMPLATE_SPEEDUPS_OFF=all),
-  and so does a sample of the update tier's cases, exit codes and messages included.
+- Every example answers file renders byte for byte the same with the patches on (a first
+  run, then a run that finds the compiled code kept) and off (RNA_TEMPLATE_PATCHES_OFF=all),
+  and six updates of this file's, exit codes and messages included; so does every update of
+  a sample of the update tier's tests (each test, every change of its core scenario), each
+  run off and then on in the project's own folder, before the test checks what it checks.
 - Python 3.12 and 3.13 (tests/support/compat.py finds or installs them, each in an
   environment of the pins) run the whole fast tier, and render every example byte for
   byte as 3.11 does, sharing one code cache folder with it (each Python keeps its own code).
-- The newest Copier, copier-template-extensions and Jinja the registries offer run the
-  fast tier's generation tests, this file's on/off comparisons and a sample of the update
-  tier, with every speed-up on: a release that changes what a speed-up relies on fails here
-  (its guard turned it off, or the output differs), before a user meets it.
+- The newest Copier, copier-template-extensions, Jinja, questionary and prompt_toolkit the
+  registries offer run the whole fast tier, this file's on/off comparisons and a sample of
+  the update tier (each update compared off and on too), with every patch on: a release
+  that changes what a patch relies on fails here (its guard turned it off, or the output or
+  the screen differs), before a user meets it.
 
 Outside CI a part that cannot set itself up is skipped with the reason; in CI it fails.
 """
@@ -31,7 +34,8 @@ import yaml
 from support import compat
 from support.generation import FIXED_ANSWERS, ROOT, differences, example, examples, subprocess_env, tree
 from support.template_repo import (
-    RELEASES, Flavor, commit_all, find_node, generate_project, git, release_history_repo, replace_text,
+    COMPARE_PATCHES, RELEASES, Flavor, commit_all, find_node, generate_project, git, release_history_repo,
+    replace_text,
 )
 from support.tiers import unavailable
 
@@ -39,21 +43,19 @@ from support.tiers import unavailable
 # every example in a process of its own, and the suite's other worker goes on with the rest.
 pytestmark = [pytest.mark.compat, pytest.mark.xdist_group("compat")]
 
-OFF = {"RNA_TEMPLATE_SPEEDUPS_OFF": "all"}
+OFF = {"RNA_TEMPLATE_PATCHES_OFF": "all"}
 EXTENSIONS = ROOT / "extensions"
 
-# What the newest libraries run, besides this file's comparisons: the fast tier's tests of
-# generated packages, answers and prompts, and of the speed-ups themselves; and the update
-# tier's flows that exercise an update's every step (scratch renders kept, a release's glue
-# beside this one's, renames, removals).
-NEWEST_TESTS = ["tests/test_speedups.py", "tests/test_examples.py", "tests/test_generate.py",
-                "tests/test_questions.py", "tests/test_add_node.py"]
+# What the newest libraries run besides the whole fast tier (the patches' own tests among it, and
+# a newcomer's replay at a terminal): the update tier's flows that exercise an update's every
+# step (scratch renders kept, a release's glue beside this one's, renames, removals), and this
+# file's on/off comparisons.
 UPDATE_SAMPLE = ["tests/test_update.py::test_add_nodes", "tests/test_update.py::test_remove_nodes",
                  "tests/test_update.py::test_an_update_ends_with_a_summary_instead_of_internal_command_lines",
                  "tests/test_merge_safety.py::test_a_renamed_node_carries_the_users_file_values_launch_entry_and_build_lines",
                  "tests/test_merge_safety.py::test_a_rename_naming_no_node_of_the_package_is_refused"]
-COMPARISONS = ["tests/test_compat.py::test_every_example_renders_byte_identical_with_the_speed_ups_on_and_off",
-               "tests/test_compat.py::test_an_update_does_and_says_the_same_with_the_speed_ups_on_and_off"]
+COMPARISONS = ["tests/test_compat.py::test_every_example_renders_byte_identical_with_the_patches_on_and_off",
+               "tests/test_compat.py::test_an_update_does_and_says_the_same_with_the_patches_on_and_off"]
 
 
 # ─── Rendering every example in a process of its own ──────────────────────────
@@ -79,7 +81,7 @@ def render_examples(python: Path, template: Path, out: Path, env: dict[str, str]
 
 @pytest.fixture(scope="module")
 def reference(template_dir, tmp_path_factory):
-    """Every example rendered by the suite's Python with the speed-ups on, and the cache folder
+    """Every example rendered by the suite's Python with the patches on, and the cache folder
     that render filled: what every other render must equal."""
     folder = tmp_path_factory.mktemp("reference")
     cache = folder / "cache"
@@ -88,7 +90,7 @@ def reference(template_dir, tmp_path_factory):
     return files, cache
 
 
-def test_every_example_renders_byte_identical_with_the_speed_ups_on_and_off(template_dir, reference, tmp_path):
+def test_every_example_renders_byte_identical_with_the_patches_on_and_off(template_dir, reference, tmp_path):
     files, cache = reference
     kept = render_examples(Path(sys.executable), template_dir, tmp_path / "kept",
                            {"RNA_TEMPLATE_CACHE_DIR": str(cache)})
@@ -184,7 +186,7 @@ def update_result(project: Path, data: dict | None, env: dict[str, str]) -> dict
 
 
 @pytest.mark.parametrize("case", UPDATES)
-def test_an_update_does_and_says_the_same_with_the_speed_ups_on_and_off(templates, tmp_path, case):
+def test_an_update_does_and_says_the_same_with_the_patches_on_and_off(templates, tmp_path, case):
     flavor_name, release, user, change = UPDATES[case]
     flavor = Flavor(flavor_name)
     made = tmp_path / "made" / "project"
@@ -203,6 +205,38 @@ def test_an_update_does_and_says_the_same_with_the_speed_ups_on_and_off(template
     for key in ("exit", "stdout", "stderr", "status", "head"):
         assert on[key] == off[key], f"{key}: on\n{on[key]}\noff\n{off[key]}"
     assert differences(on["files"], off["files"]) == []
+
+
+# ─── The update tier's cases, on and off ──────────────────────────────────────
+
+# The update tier's own files (its ROS-built tests aside): each test with its first parameters,
+# and the core scenario with every change the merge-safety figure counts, once each across the
+# flavours (every third of its change x flavour sets).
+UPDATE_TIER = ["tests/test_update.py", "tests/test_merge_safety.py", "tests/test_update_drawn.py",
+               "tests/test_port.py", "tests/test_add_node.py", "tests/test_forks.py"]
+EVERY_CHANGE = "tests/test_merge_safety.py::test_user_lines_survive"
+
+
+def update_tier_sample() -> list[str]:
+    listed = subprocess.run([sys.executable, "-m", "pytest", "--collect-only", "-q", "-p", "no:cacheprovider",
+                             "-m", "update and not ros and not ros1", *UPDATE_TIER], cwd=ROOT,
+                            env=compat.env_of(Path(sys.prefix)), capture_output=True, text=True, check=True).stdout
+    by_test: dict[str, list[str]] = {}
+    for line in listed.splitlines():
+        if "::" in line:
+            by_test.setdefault(line.split("[")[0], []).append(line.strip())
+    return [node for test, nodes in by_test.items() for node in (nodes[::3] if test == EVERY_CHANGE else nodes[:1])]
+
+
+def test_the_update_tiers_cases_do_and_say_the_same_with_the_patches_on_and_off(tmp_path):
+    """Every update of the sample's tests runs with the patches off, then on, in the project's
+    own folder, and must leave the same files, links, modes and git state and print the same
+    (tests/support/template_repo.py, COMPARE_PATCHES); each test then checks what it checks."""
+    sample = update_tier_sample()
+    assert len(sample) >= 50, sample
+    result = compat.pytest_in(Path(sys.prefix), sample, tmp_path / "updates", timeout=1800,
+                              **{COMPARE_PATCHES: "1"})
+    assert result.returncode == 0, f"{result.stdout[-8000:]}\n{result.stderr[-2000:]}"
 
 
 # ─── Other Pythons ────────────────────────────────────────────────────────────
@@ -245,20 +279,21 @@ def test_every_example_renders_byte_identical_under_python(version, template_dir
 # ─── The newest Copier, copier-template-extensions and Jinja ──────────────────
 
 
-def test_the_newest_libraries_run_the_core_tests_with_every_speed_up_on(tmp_path):
+def test_the_newest_libraries_run_the_core_tests_with_every_patch_on(tmp_path):
     try:
         venv = compat.environment(Path(sys.executable), newest=True)
     except compat.Unavailable as error:
         unavailable(f"the newest {', '.join(compat.NEWEST)} could not be installed: {error}")
     found = compat.versions(venv)
-    script = f"import json, sys; sys.path.insert(0, {str(EXTENSIONS)!r}); import speedups; " \
-             "print(json.dumps(speedups.status()))"
+    script = f"import json, sys; sys.path.insert(0, {str(EXTENSIONS)!r}); import patches; " \
+             "print(json.dumps(patches.status()))"
     states = json.loads(subprocess.run([str(venv / "bin" / "python"), "-c", script], env=compat.env_of(venv),
                                        capture_output=True, text=True, check=True).stdout)
     off = {name: state for name, state in states.items() if state != "on"}
-    assert not off, (f"with {found}, these speed-ups' guards turned them off: {off}. Check each against this "
-                     "release (tests/test_speedups.py, this tier), then widen its guard in extensions/speedups.py")
-    fast = compat.pytest_in(venv, ["-m", compat.FAST_TIER, *NEWEST_TESTS], tmp_path / "fast", timeout=1800)
+    assert not off, (f"with {found}, these patches' guards turned them off: {off}. Check each against this "
+                     "release (tests/test_patches.py, this tier), then widen its guard in extensions/patches/")
+    fast = compat.pytest_in(venv, ["-m", compat.FAST_TIER], tmp_path / "fast", timeout=1800)
     assert fast.returncode == 0, f"with {found}:\n{fast.stdout[-6000:]}\n{fast.stderr[-2000:]}"
-    sample = compat.pytest_in(venv, [*UPDATE_SAMPLE, *COMPARISONS], tmp_path / "sample", timeout=1800)
+    sample = compat.pytest_in(venv, [*UPDATE_SAMPLE, *COMPARISONS], tmp_path / "sample", timeout=1800,
+                              **{COMPARE_PATCHES: "1"})
     assert sample.returncode == 0, f"with {found}:\n{sample.stdout[-6000:]}\n{sample.stderr[-2000:]}"

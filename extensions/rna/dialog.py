@@ -345,10 +345,10 @@ class Asker:
 
     A question ends in a line break, as Copier's do: the answer is shown under it, where a
     long one has the whole line.
-    """
 
-    def __init__(self) -> None:
-        terminal.show_whole_validation_errors()
+    An answer's error is shown whole under the prompt by the patch `whole_errors`
+    (extensions/patches/prompts.py), as Copier's are.
+    """
 
     def select(self, message: str, choices: Sequence[str], default: str | None = None) -> str:
         import questionary

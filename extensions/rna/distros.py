@@ -48,6 +48,11 @@ def generation(distro: object) -> int:
     return 1 if distro in ROS1_DISTROS else 2
 
 
+def ports(before: object, after: object) -> bool:
+    """Whether changing the distro `before` to `after` ports a ROS 1 package to ROS 2."""
+    return generation(before) == 1 and generation(after) == 2
+
+
 def languages(build_type: str) -> tuple[str, ...]:
     return BUILD_TYPES.get(build_type, ("cpp", "python"))
 

@@ -51,10 +51,29 @@ BASE_SUFFIX = "_base"
 
 # Files of a whole package, which a node added to an existing package never writes, but
 # these, when the package has none: a catkin package's setup.py, which installs the Python
-# package a ROS 1 Python node's base class is in (a package of rospy scripts has none).
+# package a ROS 1 Python node's base class is in (a package of rospy scripts has none;
+# `_skip_if_exists` keeps the user's).
 PACKAGE_FILES = (".gitignore", "README.md", "LICENSE", "package.xml", "CMakeLists.txt", "setup.py", "setup.cfg",
                  "resource", "test", "launch")
 NODE_PACKAGE_FILES = {1: ("setup.py",)}
+ANSWERS_FILE = ".copier-answers.yml"
+
+
+def answers_file_name(target: object, nodes: object, node_name: object) -> str:
+    """The answers file: `.copier-answers.yml`, or for a node added to a package (target 'node')
+    `.copier-answers.rna-<node>.yml`, so that each node added keeps answers of its own."""
+    if target != "node":
+        return ANSWERS_FILE
+    first = nodes[0] if isinstance(nodes, list) and nodes else {}
+    name = first.get("name") if isinstance(first, dict) else first
+    return f".copier-answers.rna-{name or node_name or 'node'}.yml"
+
+
+def package_files_excluded(ros: int) -> str:
+    """The files of a whole package a node added to a package of ROS generation `ros` does not
+    write, one per line, as `_exclude` patterns of the destination's root."""
+    kept = NODE_PACKAGE_FILES.get(ros, ())
+    return "\n".join("/" + path for path in PACKAGE_FILES if path not in kept)
 
 
 def user_file(package: str, name: str, ros: int, language: str) -> str:

@@ -1,19 +1,13 @@
 """What the template prints at a terminal: lines wrapped at its width, whole words kept, nothing cut.
 
-prompt_toolkit (under questionary, under Copier) shows a prompt's validation error in a
-toolbar one row high: a longer error is cut at the terminal's edge, and what a user needs
-most, the corrected value, comes last. `show_whole_validation_errors()` gives Copier's
-prompts and the nodes dialog a toolbar that wraps the error at the terminal's width
-instead, as many rows as it takes, without Copier's "Validation error for question '...'"
-lead: the question is the line above it. It replaces prompt_toolkit's class where its
-prompt sessions look it up, with one built from prompt_toolkit's public widgets; with a
-prompt_toolkit that has no such name, nothing changes. RNA_TEMPLATE_PLAIN_PROMPTS=1
-leaves prompt_toolkit as it is.
+The wrapping of Copier's questions and of an answer's error at a prompt, which
+prompt_toolkit would cut at the terminal's edge, is done by the patches `fitted_questions`
+and `whole_errors` (extensions/patches/prompts.py) with these functions; the dialog's own
+questions are wrapped here.
 """
 
 from __future__ import annotations
 
-import importlib
 import os
 import re
 import shutil
@@ -60,60 +54,18 @@ def error_text(message: str) -> str:
     return _COPIERS_LEAD.sub("", message, count=1)
 
 
-def show_whole_validation_errors() -> bool:
-    """Make prompt_toolkit's prompts show a validation error whole, wrapped (see the module's doc).
-
-    Returns whether it is in place. Installing it twice changes nothing.
-    """
-    if os.environ.get("RNA_TEMPLATE_PLAIN_PROMPTS") == "1":
-        return False
-    try:
-        from prompt_toolkit.application.current import get_app
-        from prompt_toolkit.filters import has_validation_error
-        from prompt_toolkit.layout.containers import ConditionalContainer, Window
-        from prompt_toolkit.layout.controls import FormattedTextControl
-
-        # The module (the package's `prompt` is its function of that name).
-        prompt_module = importlib.import_module("prompt_toolkit.shortcuts.prompt")
-    except ImportError:
-        return False
-    if not hasattr(prompt_module, "ValidationToolbar"):
-        return False
-    if getattr(prompt_module.ValidationToolbar, "rna_wraps", False):
-        return True
-
-    class WrappedValidationToolbar:
-        """prompt_toolkit's ValidationToolbar, as many rows high as the wrapped error takes."""
-
-        rna_wraps = True
-
-        def __init__(self, show_position: bool = False) -> None:
-            def lines():
-                error = get_app().current_buffer.validation_error
-                if not error:
-                    return []
-                columns = get_app().output.get_size().columns - MARGIN
-                return [("class:validation-toolbar", "\n".join(wrap(error_text(error.message), columns)))]
-
-            self.control = FormattedTextControl(lines)
-            self.container = ConditionalContainer(content=Window(self.control, dont_extend_height=True),
-                                                  filter=has_validation_error)
-
-        def __pt_container__(self):
-            return self.container
-
-    prompt_module.ValidationToolbar = WrappedValidationToolbar
-    return True
-
-
-def copier_command(environ: dict, executable: str, which: Callable[[str], str | None]) -> str:
-    """The command that runs this Copier again from the user's shell, for the commands a message prints.
+def copier_command(environ: dict | None = None, executable: str | None = None,
+                   which: Callable[[str], str | None] = shutil.which) -> str:
+    """The command that runs this Copier again from the user's shell, for the commands a message prints
+    (by default, of this process: its environment, its Python).
 
     Copier started through a clone's `tests/env` (the README's way) is not on the user's PATH:
     that script is named (tests/env exports RNA_TEMPLATE_ENV, and its environment's Python
     runs). A `copier` found on PATH that is this one (pipx links it there) is `copier`; a
     Copier run from an environment that is not on PATH is named by its path.
     """
+    environ = dict(os.environ) if environ is None else environ
+    executable = sys.executable if executable is None else executable
     running = Path(executable).parent / "copier"
     script = environ.get("RNA_TEMPLATE_ENV")
     venv = environ.get("VIRTUAL_ENV")
@@ -136,40 +88,3 @@ def fitted_lines(text: str, columns: int, indent: str = "") -> str:
         lead = line[:len(line) - len(line.lstrip())]
         lines.extend(textwrap.wrap(line, columns, subsequent_indent=lead + indent, break_on_hyphens=False))
     return "\n".join(lines)
-
-
-def fit_copiers_questions() -> bool:
-    """Copier's questions drawn whole in a terminal narrower than the help was written for.
-
-    The help of copier.yml's questions is written in lines of 79 columns, and prompt_toolkit
-    cuts a question's lines, and a menu's choices, at the terminal's edge instead of wrapping
-    them. This wraps them between words, at the width of the terminal at hand, as Copier hands
-    each question to questionary (Question.get_questionary_structure, the one method Copier
-    builds a prompt from); a line that fits is left alone. Returns whether it is in place:
-    with a Copier without that method, or RNA_TEMPLATE_PLAIN_PROMPTS=1, nothing changes.
-    """
-    if os.environ.get("RNA_TEMPLATE_PLAIN_PROMPTS") == "1":
-        return False
-    try:
-        from copier._user_data import Question
-    except ImportError:
-        return False
-    structure = getattr(Question, "get_questionary_structure", None)
-    if structure is None or getattr(structure, "rna_fits", False):
-        return structure is not None
-
-    def fitted_structure(self):
-        result = structure(self)
-        columns = width()
-        # The question follows the question mark (2 columns) and a space; choices the pointer.
-        if isinstance(result.get("message"), str):
-            result["message"] = fitted_lines("   " + result["message"], columns)[3:]
-        for choice in result.get("choices") or ():
-            title = getattr(choice, "title", None)
-            if isinstance(title, str) and len(title) + 3 > columns:
-                choice.title = fitted_lines(title, columns - 3, indent="").replace("\n", "\n   ")
-        return result
-
-    fitted_structure.rna_fits = True
-    Question.get_questionary_structure = fitted_structure
-    return True

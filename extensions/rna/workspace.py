@@ -13,7 +13,7 @@ import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-from . import files
+from . import files, layout
 
 _SKIP = {"build", "install", "log", "devel", "node_modules", "__pycache__"}
 _NAME = re.compile(r"<name>\s*([^<\s]+)\s*</name>")
@@ -45,6 +45,13 @@ def _packages(root: Path, depth: int = 4):
             match = _NAME.search(files.text(Path(current), "package.xml") or "")
             if match:
                 yield match[1], Path(current)
+
+
+def files_in_the_way(destination: Path, package: str, node: str, ros: int, languages) -> list[str]:
+    """The files of a node, in any of `languages`, that are already in the package `destination`
+    (a node added to a package must not land on them)."""
+    return [path for language in languages for path in layout.node_files(package, node, ros, language)
+            if (destination / path).exists()]
 
 
 def find_interfaces(destination: Path, limit: int = 200) -> list[str]:

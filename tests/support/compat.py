@@ -1,13 +1,14 @@
-"""Other Pythons, and the newest releases of Copier, copier-template-extensions and Jinja, each
+"""Other Pythons, and the newest releases of the libraries extensions/patches/ changes, each
 in a virtual environment of its own, for the compat tier (tests/test_compat.py).
 
-Users install the newest Copier (and with it the newest Jinja) into whatever Python their
-system has: Ubuntu 24.04 brings 3.12, Debian 13 3.13. The suite's own environment
-(tests/env) is Python 3.11 with the pins of tests/requirements.txt; here the same pins go
-into 3.12 and 3.13, and the newest releases of the three libraries, not the pins, into
-3.11. The environments are kept in the suite's cache folder (RNA_TEMPLATE_CACHE, as the
-ROS 2 ones), rebuilt when the requirements change; the newest releases are asked for at
-every run. Standard library only: it runs before any of it exists.
+Users install the newest Copier (and with it the newest Jinja, questionary and
+prompt_toolkit) into whatever Python their system has: Ubuntu 24.04 brings 3.12, Debian 13
+3.13. The suite's own environment (tests/env) is Python 3.11 with the pins of
+tests/requirements.txt; here the same pins go into 3.12 and 3.13, and the newest releases
+of the libraries the patches change, not the pins, into 3.11. The environments are kept in
+the suite's cache folder (RNA_TEMPLATE_CACHE, as the ROS 2 ones), rebuilt when the
+requirements change; the newest releases are asked for at every run. Standard library
+only: it runs before any of it exists.
 """
 
 from __future__ import annotations
@@ -28,8 +29,9 @@ from .ros2 import default_cache_root
 
 REQUIREMENTS = ROOT / "tests" / "requirements.txt"
 PYTHONS = ("3.12", "3.13")
-NEWEST = ("copier", "copier-template-extensions", "jinja2")  # the libraries whose internals speedups.py touches
-FAST_TIER = "not ros and not ros1 and not update and not compat"
+# The libraries whose behaviour extensions/patches/ changes (questionary's is through prompt_toolkit).
+NEWEST = ("copier", "copier-template-extensions", "jinja2", "questionary", "prompt-toolkit")
+FAST_TIER = "not ros and not ros1 and not update and not browser and not compat"
 # Variables of the suite's own run (its xdist worker, its test) that a run started from it must not see.
 _OUTER = ("PYTEST_XDIST_WORKER", "PYTEST_XDIST_WORKER_COUNT", "PYTEST_XDIST_TESTRUNUID", "PYTEST_CURRENT_TEST",
           "PYTEST_ADDOPTS", "VIRTUAL_ENV")
@@ -80,8 +82,8 @@ def python(version: str) -> Path:
 
 def environment(interpreter: Path, newest: bool = False) -> Path:
     """A virtual environment of `interpreter` with tests/requirements.txt installed; with
-    `newest`, the newest releases of Copier, copier-template-extensions and Jinja instead of
-    the pins (and the newest of what they need), asked for again at every call."""
+    `newest`, the newest releases of the libraries the patches change (NEWEST) instead of the
+    pins (and the newest of what they need), asked for again at every call."""
     requirements = REQUIREMENTS.read_text()
     if newest:
         requirements = "".join(line for line in requirements.splitlines(keepends=True)

@@ -34,6 +34,7 @@ import shutil
 import subprocess
 import sys
 import tarfile
+import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -195,9 +196,69 @@ def run_update(project: Path, data: dict | None = None, vcs_ref: str | None = No
     if vcs_ref is not None:
         command += ["--vcs-ref", vcs_ref]
     command += list(extra_args)
-    result = subprocess.run(command, cwd=project, env=subprocess_env(), stdin=subprocess.DEVNULL,
+    if os.environ.get(COMPARE_PATCHES):
+        return _compared_with_the_patches_off(project, command, timeout)
+    return _update(project, command, timeout)
+
+
+def _update(project: Path, command: list[str], timeout: float, **env: str) -> UpdateResult:
+    result = subprocess.run(command, cwd=project, env={**subprocess_env(), **env}, stdin=subprocess.DEVNULL,
                             capture_output=True, text=True, timeout=timeout)
     return UpdateResult(result.returncode, ANSI.sub("", result.stdout), ANSI.sub("", result.stderr), command)
+
+
+# Set (the compat tier sets it), every update of run_update() runs twice in the project's own
+# folder, as it was: with the patches off (extensions/patches/), then on; the two must leave the
+# same files, links, modes and git state and say the same (Copier's scratch folders, named at
+# random, aside). The test goes on with the second.
+COMPARE_PATCHES = "RNA_TEST_COMPARE_PATCHES"
+SCRATCH_NAMES = re.compile(r"(copier\._[a-z]+\.[a-z_]+\.|rna-update-renders-)\w+")
+
+
+def _compared_with_the_patches_off(project: Path, command: list[str], timeout: float) -> UpdateResult:
+    # Held outside the project's folder and its parent: that may be in the same repository.
+    held = Path(tempfile.mkdtemp(prefix="rna-before-update-")) / project.name
+    shutil.copytree(project, held, symlinks=True)
+    try:
+        off = _update(project, command, timeout, RNA_TEMPLATE_PATCHES_OFF="all")
+        off_state = project_state(project)
+        shutil.rmtree(project)
+        shutil.copytree(held, project, symlinks=True)
+    finally:
+        shutil.rmtree(held.parent, ignore_errors=True)
+    on = _update(project, command, timeout)
+    on_state = project_state(project)
+    said = [(name, SCRATCH_NAMES.sub(r"\1*", getattr(on, name)), SCRATCH_NAMES.sub(r"\1*", getattr(off, name)))
+            for name in ("stdout", "stderr")]
+    differing = [f"{name}: on\n{with_patches}\noff\n{without}" for name, with_patches, without in said
+                 if with_patches != without]
+    differing += [f"{key} differs: on {on_state[key]!r}, off {off_state[key]!r}"
+                  for key in on_state if key != "files" and on_state[key] != off_state[key]]
+    differing += [f"{path}: on {on_state['files'].get(path)!r:.200}, off {off_state['files'].get(path)!r:.200}"
+                  for path in sorted(on_state["files"].keys() | off_state["files"].keys())
+                  if on_state["files"].get(path) != off_state["files"].get(path)]
+    assert on.returncode == off.returncode and not differing, (
+        f"the update did otherwise with the patches on (exit {on.returncode}) and off (exit {off.returncode}):\n"
+        + "\n".join(differing))
+    return on
+
+
+def project_state(project: Path) -> dict:
+    """What an update can change in a project: every path but .git's (a file's bytes and mode, a
+    link's target, a folder), git's status, index and HEAD."""
+    files: dict[str, tuple] = {}
+    for path in sorted(project.rglob("*")):
+        relative = path.relative_to(project)
+        if relative.parts[0] == ".git":
+            continue
+        mode = path.lstat().st_mode
+        files[str(relative)] = (("link", os.readlink(path)) if path.is_symlink()
+                                else ("folder", mode & 0o777) if path.is_dir()
+                                else ("file", mode & 0o777, path.read_bytes()))
+    return {"files": files,
+            "status": git("status", "--porcelain", "--untracked-files=all", cwd=project).stdout,
+            "index": git("ls-files", "--stage", cwd=project).stdout,
+            "head": git("rev-parse", "HEAD", cwd=project).stdout}
 
 
 # ─── What an update left behind ───────────────────────────────────────────────

@@ -30,7 +30,7 @@ run, no warm-up):
   large     the ament_cmake update again, the package holding a 200 MB bag of the user's
             (random bytes, committed): a file the update must not read nor slow down on
 
-The template keeps compiled code between runs (extensions/speedups.py): here in the
+The template keeps compiled code between runs (extensions/patches/code_cache.py): here in the
 scratch folder, filled by one copy before the rounds; `default_cold` runs with it off.
 
 --profile adds where the time goes for the default package, 1 and 50 nodes and the updates

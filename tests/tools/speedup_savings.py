@@ -1,11 +1,11 @@
-"""What each speed-up of extensions/speedups.py saves, in instructions counted by callgrind.
+"""What each speed-up of extensions/patches/ saves, in instructions counted by callgrind.
 
     tests/env python tests/tools/speedup_savings.py [--template DIR] [--only NAME ...] [--json out.json]
 
 Three cases of benchmark.py, each a whole `copier` process under valgrind's callgrind with
 its git processes: the default package, a package of 50 nodes, and an update adding a node
 to a 20-node package. Each is counted with every speed-up on, with each one turned off
-alone (RNA_TEMPLATE_SPEEDUPS_OFF=<name>), and with all of them off; a speed-up saves what
+alone (RNA_TEMPLATE_PATCHES_OFF=<name>), and with all of them off; a speed-up saves what
 the case costs more without it, given as a share of the case with every speed-up on.
 Every count follows one uncounted run of the same case and setting, so the compiled code
 kept is what a user's later runs find. Counts repeat to a tenth of a per cent whatever
@@ -24,17 +24,18 @@ from pathlib import Path
 import benchmark
 
 sys.path.insert(0, str(benchmark.ROOT / "extensions"))
-import speedups  # noqa: E402
+import patches  # noqa: E402
 
 CASES = ("default", "nodes_50", "update_20")
-SETTINGS = ("", *speedups.NAMES, "all")  # "" = every speed-up on; a name = that one off; "all" = all off
+SPEED_UPS = tuple(patches.GROUPS["speed"])  # the patches for speed (the others change what prompts show)
+SETTINGS = ("", *SPEED_UPS, "all")  # "" = every speed-up on; a name = that one off; "all" = all off
 
 
 def count(bench: benchmark.Bench, cases: list[benchmark.Case], settings: tuple[str, ...]) -> dict:
     """{setting: {case: instructions}}, each count printed as it comes (a long run can be cut short)."""
     from concurrent.futures import ThreadPoolExecutor
 
-    runs = [(setting, dataclasses.replace(case, samples=[], env={**case.env, speedups.SWITCH: setting}))
+    runs = [(setting, dataclasses.replace(case, samples=[], env={**case.env, patches.SWITCH: setting}))
             for setting in settings for case in cases]
     scratch = bench.work / "counted" if bench is not None else None
 
@@ -46,7 +47,7 @@ def count(bench: benchmark.Bench, cases: list[benchmark.Case], settings: tuple[s
     counts: dict[str, dict[str, int]] = {}
     with ThreadPoolExecutor(max_workers=2) as pool:  # callgrind runs a process on one core
         for setting, name, instructions in pool.map(one, range(len(runs))):
-            print(f"speedup_savings: {name} with {speedups.SWITCH}={setting!r}: {instructions:,}", file=sys.stderr,
+            print(f"speedup_savings: {name} with {patches.SWITCH}={setting!r}: {instructions:,}", file=sys.stderr,
                   flush=True)
             counts.setdefault(setting, {})[name] = instructions
     return counts
@@ -84,7 +85,7 @@ def main(argv: list[str] | None = None) -> int:
         print("speedup_savings: valgrind is not installed (apt-get install valgrind)", file=sys.stderr)
         return 1
     names = tuple(arguments.cases or CASES)
-    settings = ("", *(arguments.only or ("all", *speedups.NAMES)))
+    settings = ("", *(arguments.only or ("all", *SPEED_UPS)))
     with tempfile.TemporaryDirectory(prefix="rna-savings-") as scratch:
         bench = benchmark.Bench(Path(scratch), arguments.template.resolve(), {"default", "scale", "update"})
         cases = [case for case in bench.cases() if case.name in names]

@@ -1,11 +1,13 @@
-"""The speed-ups (extensions/speedups.py): each does what it says, never changes the output,
-is turned off by its switch and by its guard.
+"""The patches (extensions/patches/): each does what it says, never changes the output, is
+turned off by its switch and by its guard.
 
-Work that Copier runs are spared is counted in a Copier process of its own, and the package
-each run writes is compared byte for byte: a first run, a run that finds the compiled code
-kept, and a run with the speed-ups off. The compat tier (tests/test_compat.py) compares
-every example answers file and a sample of the update tier's cases on and off, under the
-newest Copier, copier-template-extensions and Jinja, and under Python 3.12 and 3.13.
+Work that Copier runs are spared by the speed-ups is counted in a Copier process of its
+own, and the package each run writes is compared byte for byte: a first run, a run that
+finds the compiled code kept, and a run with the patches off. What the prompt patches show
+is read off a terminal emulator. The compat tier (tests/test_compat.py) compares every
+example answers file and a sample of the update tier's cases on and off, and runs this
+file, under the newest Copier, copier-template-extensions, Jinja, questionary and
+prompt_toolkit, and under Python 3.12 and 3.13.
 """
 
 from __future__ import annotations
@@ -17,34 +19,44 @@ import subprocess
 import sys
 from pathlib import Path
 
+import patches
 import pytest
-import speedups
 from copier._main import Worker
+from copier._user_data import Question
+from patches import code_cache, jinja
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from support.generation import FIXED_ANSWERS, copy_counted, git, snapshot_template, subprocess_env, tree
 
-OFF = {speedups.SWITCH: "all"}
+OFF = {patches.SWITCH: "all"}
+EXTENSIONS = Path(patches.__file__).resolve().parents[1]
 
 
 # ─── Switch and guards ────────────────────────────────────────────────────────
 
 
-def test_one_variable_turns_every_speed_up_off_or_some_by_name(monkeypatch):
-    monkeypatch.delenv(speedups.SWITCH, raising=False)
-    assert speedups.status() == dict.fromkeys(speedups.NAMES, "on")
-    monkeypatch.setenv(speedups.SWITCH, "all")
-    assert all(state.startswith(f"off: {speedups.SWITCH}") for state in speedups.status().values())
-    monkeypatch.setenv(speedups.SWITCH, "strings, git_file_mode")
-    states = speedups.status()
-    assert [name for name in speedups.NAMES if states[name] != "on"] == ["strings", "git_file_mode"]
-    monkeypatch.setenv(speedups.SWITCH, "jinja_code")  # plain lines take their code from it
-    assert speedups.status()["plain_lines"].startswith("off: ")
+def test_one_variable_turns_every_patch_off_or_some_by_name_or_group(monkeypatch):
+    monkeypatch.delenv(patches.SWITCH, raising=False)
+    assert patches.status() == dict.fromkeys(patches.NAMES, "on")
+    monkeypatch.setenv(patches.SWITCH, "all")
+    assert all(state.startswith(f"off: {patches.SWITCH}") for state in patches.status().values())
+    for switch, turned_off in (("strings, git_file_mode", ["strings", "git_file_mode"]),
+                               ("prompts", ["whole_errors", "fitted_questions"]),
+                               ("speed", list(patches.GROUPS["speed"])),
+                               ("jinja_code", ["jinja_code", "plain_lines"])):  # plain lines take its code
+        monkeypatch.setenv(patches.SWITCH, switch)
+        states = patches.status()
+        assert [name for name in patches.NAMES if states[name] != "on"] == turned_off, switch
+
+
+class _OtherToolbar:
+    def __init__(self, show_position=False, wrap=True):
+        pass
 
 
 @pytest.mark.parametrize(("where", "attribute", "value", "turned_off"), [
-    ("copier", "__version__", "10.0.0", {"git_file_mode", "answers_file_name"}),
+    ("copier", "__version__", "10.0.0", {"git_file_mode", "answers_file_name", "fitted_questions"}),
     ("jinja2", "__version__", "4.0.0", {"strings", "jinja_code", "plain_lines"}),
     ("worker", "_sync_git_index_executable_bit", lambda self, path: None, {"git_file_mode"}),
     ("worker", "answers_relpath", "not a property", {"answers_file_name"}),
@@ -52,21 +64,31 @@ def test_one_variable_turns_every_speed_up_off_or_some_by_name(monkeypatch):
     ("environment", "compile", lambda self, source: None, {"jinja_code", "plain_lines"}),
     ("environment", "from_string", lambda self, source: None, {"strings"}),
     ("sys", "version_info", (3, 10, 0, "final", 0), {"dataclasses"}),
+    ("question", "get_questionary_structure", lambda self, answers: {}, {"fitted_questions"}),
+    ("worker", "_ask", lambda self: None, {"fitted_questions"}),  # asks no question's structure
+    ("prompt_toolkit", "__version__", "4.0.0", {"whole_errors"}),
+    ("prompt_module", "ValidationToolbar", _OtherToolbar, {"whole_errors"}),
+    ("prompt_session", "_create_layout", lambda self: None, {"whole_errors"}),  # makes no toolbar by that name
 ])
-def test_a_library_that_differs_turns_its_speed_ups_off(monkeypatch, where, attribute, value, turned_off):
+def test_a_library_that_differs_turns_its_patches_off(monkeypatch, where, attribute, value, turned_off):
+    import importlib
+
     import copier
     import jinja2
+    import prompt_toolkit
 
-    monkeypatch.delenv(speedups.SWITCH, raising=False)
+    monkeypatch.delenv(patches.SWITCH, raising=False)
+    prompt_module = importlib.import_module("prompt_toolkit.shortcuts.prompt")
     owner = {"copier": copier, "jinja2": jinja2, "worker": Worker, "environment": jinja2.Environment,
-             "sys": sys}[where]
+             "sys": sys, "question": Question, "prompt_toolkit": prompt_toolkit, "prompt_module": prompt_module,
+             "prompt_session": prompt_module.PromptSession}[where]
     monkeypatch.setattr(owner, attribute, value)
-    speedups._state.cache_clear()
+    patches._state.cache_clear()
     try:
-        states = speedups.status()
+        states = patches.status()
     finally:
         monkeypatch.undo()
-        speedups._state.cache_clear()
+        patches._state.cache_clear()
     assert {name for name, state in states.items() if state != "on"} == turned_off, states
 
 
@@ -75,14 +97,14 @@ def test_dataclasses_that_compile_otherwise_turn_their_speed_up_off():
 
     without_exec = types.ModuleType("dataclasses")
     exec("def _create_fn(name, args, body):\n    return compile(body, name, 'exec')\n", vars(without_exec))
-    assert speedups._dataclasses_differ(without_exec) == "dataclasses does not call exec by name"
-    assert speedups._dataclasses_differ() is None
+    assert code_cache._dataclasses_differ(without_exec) == "dataclasses does not call exec by name"
+    assert code_cache._dataclasses_differ() is None
 
 
 def test_the_template_modules_load_without_importing_copier(tmp_path):
     # The after-update step and add_node load them; importing Copier would double their work.
-    script = f"import sys; sys.path.insert(0, {str(speedups.__file__.rsplit('/', 1)[0])!r}); import speedups\n" \
-             f"with speedups.template_modules(__import__('pathlib').Path({str(tmp_path)!r})): pass\n" \
+    script = f"import sys; sys.path.insert(0, {str(EXTENSIONS)!r}); import patches\n" \
+             f"with patches.template_modules(__import__('pathlib').Path({str(tmp_path)!r})): pass\n" \
              "print(sorted(name for name in sys.modules if name.split('.')[0] in ('copier', 'jinja2')))"
     result = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True,
                             env={**subprocess_env(), "RNA_TEMPLATE_CACHE_DIR": str(tmp_path / "cache")})
@@ -90,12 +112,93 @@ def test_the_template_modules_load_without_importing_copier(tmp_path):
 
 
 def test_turned_off_nothing_of_jinja_or_copier_is_replaced(template_folder, tmp_path, monkeypatch):
-    monkeypatch.setenv(speedups.SWITCH, "all")
+    monkeypatch.setenv(patches.SWITCH, "all")
     environment = Worker(src_path=str(template_folder), dst_path=tmp_path, unsafe=True).jinja_env
     assert "compile" not in vars(environment) and "from_string" not in vars(environment)
-    with speedups.template_modules(tmp_path):
+    with patches.template_modules(tmp_path):
         assert "exec" not in vars(dataclasses)
         assert not any(getattr(hook, "rna_template_root", None) == str(tmp_path) for hook in sys.path_hooks)
+
+
+# ─── Prompts: what the terminal shows ─────────────────────────────────────────
+
+
+def test_copiers_questions_and_choices_wrap_between_words_in_a_narrow_terminal(template_folder, tmp_path,
+                                                                                monkeypatch):
+    """fitted_questions, on Copier's own Question: every line of a question and of a choice fits
+    40 columns (after the question mark's and the pointer's 3), and says what Copier's did."""
+    from copier._user_data import AnswersMap
+
+    monkeypatch.delenv(patches.SWITCH, raising=False)
+    worker = Worker(src_path=str(template_folder), dst_path=tmp_path, unsafe=True)
+    environment = worker.jinja_env  # loads the glue, which turns the patches on
+    # A 40-column terminal, for whichever checkout's rna.terminal the process-wide patch was made with.
+    monkeypatch.setattr(os, "get_terminal_size", lambda *_: os.terminal_size((40, 24)))
+    answers = AnswersMap(init=dict(FIXED_ANSWERS))
+    asked = 0
+
+    def fits(text: str) -> bool:  # the first line after 3 columns (question mark or pointer), the others whole
+        first, *others = text.split("\n")
+        return len(first) <= 36 and all(len(line) <= 39 for line in others)
+
+    def words(text: str) -> str:  # what is shown, wherever the lines break (a URL longer than a line, too)
+        return "".join(text.split())
+
+    for name, details in worker.template.questions_data.items():
+        question = Question(answers=answers, context=worker._render_context(), jinja_env=environment,
+                            settings=worker.settings, var_name=name, **details)
+        fitted = question.get_questionary_structure()
+        copiers = Question.get_questionary_structure.__wrapped__(question)
+        assert words(fitted["message"]) == words(copiers["message"]), name
+        assert fits(fitted["message"]), (name, fitted["message"])
+        for choice, copiers_choice in zip(fitted.get("choices") or (), copiers.get("choices") or (), strict=True):
+            assert words(choice.title) == words(copiers_choice.title) and choice.value == copiers_choice.value
+            assert fits(choice.title), (name, choice.title)
+        asked += len(copiers["message"]) > 39
+        answers.user[name] = question.get_default()
+    assert asked >= 10  # questions Copier would have shown cut
+
+
+# An error as Copier words it, for a node name typed at a prompt, and a prompt in a terminal of 40 columns.
+ERROR = ("Validation error for question 'node_name': use motor_driver: 'motor-driver' is not a valid node name "
+         "(lower_snake_case: letters, digits and single underscores, starting with a letter)")
+PROMPT = f"""
+import sys
+sys.path.insert(0, {str(EXTENSIONS)!r})
+import patches, questionary
+patches.install(None)
+questionary.text("Node name", validate=lambda text: {ERROR!r}).unsafe_ask()
+"""
+
+
+@pytest.mark.parametrize("turned_off", ["speed", "speed,whole_errors"], ids=["on", "off"])
+def test_an_answers_error_is_shown_whole_under_the_prompt(turned_off):
+    """whole_errors, at a real terminal: the error wrapped at its width, without Copier's lead
+    (the question is the line above it); off, prompt_toolkit's one row cuts it."""
+    import pexpect
+    import pyte
+
+    screen = pyte.Screen(40, 12)
+    stream = pyte.Stream(screen)
+    env = {**subprocess_env(), "TERM": "xterm", "PROMPT_TOOLKIT_NO_CPR": "1", patches.SWITCH: turned_off}
+    child = pexpect.spawn(sys.executable, ["-c", PROMPT], env=env, encoding="utf-8", timeout=60,
+                          dimensions=(12, 40))
+    child.logfile_read = type("Screen", (), {"write": lambda self, data: stream.feed(data),
+                                             "flush": lambda self: None})()
+    try:
+        child.expect_exact("Node name")
+        child.send("motor-driver\r")
+        child.expect("letter\\)" if turned_off == "speed" else "Validation")
+        child.expect(pexpect.TIMEOUT, timeout=1)  # the rest of the screen, drawn
+    finally:
+        child.close(force=True)
+    shown = " ".join(row.strip() for row in screen.display if row.strip())
+    whole = ERROR.split(": ", 1)[1]
+    if turned_off == "speed":
+        assert whole in shown and "Validation error" not in shown, screen.display
+        assert all(len(row.rstrip()) < 40 for row in screen.display), screen.display
+    else:
+        assert whole not in shown and "starting with a letter" not in shown, screen.display
 
 
 # ─── Work spared, counted in a Copier process ─────────────────────────────────
@@ -181,17 +284,19 @@ def runs(template, tmp_path_factory):
     return run
 
 
-SPARED = pytest.mark.xdist_group("test_speedups:runs")  # one worker makes the runs for all of them
+SPARED = pytest.mark.xdist_group("test_patches:runs")  # one worker makes the runs for all of them
 
 
 @SPARED
 def test_a_second_run_compiles_nothing_and_writes_the_same_package(runs, tmp_path):
     first, second, off = runs("first"), runs("second"), runs("off")
     assert first["jinja"] > 10 and len(first["python"]) > 10
-    # Copier loads the glue by its path, and the glue speedups.py, with Python's loader (a .pyc in the
-    # clone at best); the template's modules after them come from the cache.
+    # Copier loads the glue by its path, and the glue the patches' register and code cache, with Python's
+    # loader (a .pyc in the clone at best); the template's modules, the other patches among them, come
+    # from the cache.
     assert second["jinja"] == 0
-    assert {Path(path).name for path in second["python"]} == {"copier_glue.py", "speedups.py"}
+    assert {path.split("/extensions/", 1)[1] for path in second["python"]} == \
+        {"copier_glue.py", "patches/__init__.py", "patches/code_cache.py"}
     assert off["jinja"] > first["jinja"] and len(off["python"]) >= len(first["python"])  # each string, each time
     assert first["tree"] == second["tree"] == off["tree"]
 
@@ -234,11 +339,11 @@ def test_git_is_asked_for_the_file_mode_once_and_copiers_method_runs_when_it_is_
 
 
 def test_code_is_found_again_by_what_was_compiled(tmp_path):
-    store = speedups.Store(tmp_path / "codes.marshal")
+    store = code_cache.Store(tmp_path / "codes.marshal")
     code = compile("answer = 42", "<test>", "exec")
     store.put(("answer = 42", "name", False), code)
     store.save()
-    again = speedups.Store(tmp_path / "codes.marshal")
+    again = code_cache.Store(tmp_path / "codes.marshal")
     assert again.get(("answer = 42", "name", False)) == code
     assert again.get(("answer = 43", "name", False)) is None
     assert again.get(("answer = 42", "other name", False)) is None
@@ -246,56 +351,56 @@ def test_code_is_found_again_by_what_was_compiled(tmp_path):
 
 def test_each_python_keeps_its_own_code(tmp_path, monkeypatch):
     monkeypatch.setenv("RNA_TEMPLATE_CACHE_DIR", str(tmp_path))
-    ours = speedups.store("python", "")
+    ours = code_cache.store("python", "")
     monkeypatch.setattr(sys, "version", sys.version + " (another build)")
-    assert speedups.store("python", "") is not ours and speedups.store("python", "").path != ours.path
+    assert code_cache.store("python", "") is not ours and code_cache.store("python", "").path != ours.path
 
 
 def test_a_file_that_does_not_read_is_passed_over_and_written_anew(tmp_path):
     path = tmp_path / "codes.marshal"
     for broken in (b"", b"not marshal", marshal.dumps(("another format", {})), marshal.dumps([1, 2])):
         path.write_bytes(broken)
-        store = speedups.Store(path)
+        store = code_cache.Store(path)
         assert store.get("anything") is None
         store.put("anything", compile("x = 1", "<test>", "exec"))
         store.save()
-        assert speedups.Store(path).get("anything") is not None
+        assert code_cache.Store(path).get("anything") is not None
 
 
 def test_saving_merges_what_other_processes_wrote(tmp_path):
     path = tmp_path / "codes.marshal"
-    one, other = speedups.Store(path), speedups.Store(path)
+    one, other = code_cache.Store(path), code_cache.Store(path)
     one.put("one", compile("x = 1", "<one>", "exec"))
     other.put("other", compile("x = 2", "<other>", "exec"))
     one.save()
     other.save()
-    merged = speedups.Store(path)
+    merged = code_cache.Store(path)
     assert merged.get("one") is not None and merged.get("other") is not None
 
 
 def test_past_its_size_a_file_keeps_the_code_of_the_last_run(tmp_path, monkeypatch):
     path = tmp_path / "codes.marshal"
-    old = speedups.Store(path)
+    old = code_cache.Store(path)
     for index in range(5):
         old.put(f"old {index}", compile(f"x = {index}", "<old>", "exec"))
     old.save()
-    monkeypatch.setattr(speedups, "_MAX_CODES", 4)
-    run = speedups.Store(path)
+    monkeypatch.setattr(code_cache, "_MAX_CODES", 4)
+    run = code_cache.Store(path)
     run.get("old 0")
     run.put("new", compile("y = 1", "<new>", "exec"))
     run.save()
-    kept = speedups.Store(path)
+    kept = code_cache.Store(path)
     assert [kept.get(key) is not None for key in ("old 0", "old 1", "new")] == [True, False, True]
 
 
 def test_turned_off_or_unwritable_it_only_compiles(tmp_path, monkeypatch):
     monkeypatch.setenv("RNA_TEMPLATE_CACHE_DIR", "")
-    assert speedups.folder() is None
-    store = speedups.Store(None)
+    assert code_cache.folder() is None
+    store = code_cache.Store(None)
     store.put("key", compile("x = 1", "<test>", "exec"))
     store.save()
     (tmp_path / "file").write_text("not a folder")
-    blocked = speedups.Store(tmp_path / "file" / "codes.marshal")
+    blocked = code_cache.Store(tmp_path / "file" / "codes.marshal")
     blocked.put("key", compile("x = 1", "<test>", "exec"))
     blocked.save()  # no error: the run goes on without a cache
     assert sorted(os.listdir(tmp_path)) == ["file"]
@@ -306,11 +411,14 @@ def test_the_template_folder_is_left_without_pycache(tmp_path):
     env = {**subprocess_env(), "RNA_TEMPLATE_CACHE_DIR": str(tmp_path / "cache")}
     env.pop("PYTHONDONTWRITEBYTECODE", None)
     extensions = str(template / "extensions")
-    script = f"import sys; sys.path.insert(0, {extensions!r}); import speedups; " \
-             f"speedups.import_from(__import__('pathlib').Path({extensions!r})); import rna"
+    script = f"import sys; sys.path.insert(0, {extensions!r}); import patches; " \
+             f"patches.template_modules(__import__('pathlib').Path({extensions!r})).__enter__(); import rna; " \
+             "import patches.copier_worker, patches.guards, patches.jinja, patches.prompts"
     for _ in range(2):
         subprocess.run([sys.executable, "-c", script], env=env, check=True, timeout=60)
-    assert {path.name.partition(".")[0] for path in template.rglob("*.pyc")} <= {"speedups"}  # imported first
+    # What Python imports before the cache is in place: the package's register and the cache itself.
+    assert {str(path.relative_to(template / "extensions")).split(".")[0] for path in template.rglob("*.pyc")} <= \
+        {"patches/__pycache__/__init__", "patches/__pycache__/code_cache"}
     assert list((tmp_path / "cache").glob("python-*.marshal"))
 
 
@@ -343,21 +451,21 @@ def test_a_line_of_plain_text_gets_the_code_jinja_compiles_for_it(copier_environ
 
 def test_code_that_does_not_hold_the_stand_in_line_is_not_taken_for_it():
     code = compile("yield_me = 'a line'", "<test>", "exec")
-    assert speedups._with_constant(code, "xxxx", "text") is None  # the caller compiles the text itself
-    replaced = speedups._with_constant(compile("def f():\n    return 'xxxx'\n", "<test>", "exec"), "xxxx", "text")
+    assert jinja._with_constant(code, "xxxx", "text") is None  # the caller compiles the text itself
+    replaced = jinja._with_constant(compile("def f():\n    return 'xxxx'\n", "<test>", "exec"), "xxxx", "text")
     namespace = {}
     exec(replaced, namespace)
     assert namespace["f"]() == "text"
 
 
 def test_a_jinja_whose_plain_lines_compile_otherwise_gets_its_own_code(monkeypatch):
-    monkeypatch.delenv(speedups.SWITCH, raising=False)
-    monkeypatch.setattr(speedups, "_plain_lines_fit", {})
-    assert speedups._plain_lines_fit_in("a compiler", lambda source: compile(repr(source), "<test>", "eval"))
-    monkeypatch.setattr(speedups, "_plain_lines_fit", {})
-    assert not speedups._plain_lines_fit_in("another", lambda source: compile(f"({source!r}, {len(source)})",
-                                                                              "<test>", "eval"))
-    assert speedups.status()["plain_lines"].startswith("off: a probe line")
+    monkeypatch.delenv(patches.SWITCH, raising=False)
+    monkeypatch.setattr(jinja, "_plain_lines_fit", {})
+    assert jinja._plain_lines_fit_in("a compiler", lambda source: compile(repr(source), "<test>", "eval"))
+    monkeypatch.setattr(jinja, "_plain_lines_fit", {})
+    assert not jinja._plain_lines_fit_in("another", lambda source: compile(f"({source!r}, {len(source)})",
+                                                                          "<test>", "eval"))
+    assert patches.status()["plain_lines"].startswith("off: a probe line")
 
 
 def _record_class():
@@ -381,10 +489,10 @@ def test_dataclass_methods_come_compiled_from_the_store_as_dataclasses_compiles_
         compiled.append(args)
         return compile(*args, **kwargs)
 
-    monkeypatch.setattr(speedups, "compile", counting, raising=False)
-    with speedups.dataclass_methods_kept():
+    monkeypatch.setattr(code_cache, "compile", counting, raising=False)
+    with code_cache.dataclass_methods_kept():
         first = _record_class()
-    with speedups.dataclass_methods_kept(), speedups.dataclass_methods_kept():  # nested, as a load may be
+    with code_cache.dataclass_methods_kept(), code_cache.dataclass_methods_kept():  # nested, as a load may be
         again = _record_class()
     assert "exec" not in vars(dataclasses)  # the builtin again, for everyone else
     assert len(compiled) <= len(METHODS)  # the first class compiled at most each method once, the second nothing
