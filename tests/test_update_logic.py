@@ -168,6 +168,19 @@ def test_changes_that_only_touch_each_other_both_land():
     assert merge.merge3(ours, base, theirs) == ("libs(\n  a\n  new\n  b\n  mine)\n", False)
 
 
+def test_whole_methods_both_sides_add_at_one_place_are_both_kept():
+    base = "class A:\n\n    def a(self):\n        pass\n\n\ndef main():\n"
+    ours = "class A:\n\n    def a(self):\n        pass\n\n    def mine(self):\n        return 1\n\n\ndef main():\n"
+    theirs = ("class A:\n\n    def a(self):\n        pass\n\n"
+              "    def hook(self, changed):\n        pass\n\n\ndef main():\n")
+    assert merge.merge3(ours, base, theirs) == (
+        "class A:\n\n    def a(self):\n        pass\n\n    def mine(self):\n        return 1\n\n"
+        "    def hook(self, changed):\n        pass\n\n\ndef main():\n", False)
+    # one name on both sides, or lines that are not whole methods: still the user's call
+    assert merge.merge3(ours, base, theirs.replace("hook", "mine"))[1]
+    assert merge.merge3(ours, base, theirs.replace("    def hook(self, changed):\n", "    x = 1\n"))[1]
+
+
 def test_real_conflicts_stay_marked():
     text, conflicted = merge.merge3("x\nmine\ny\n", "x\nold\ny\n", "x\nnew\ny\n")
     assert conflicted and text == "x\n<<<<<<< before updating\nmine\n=======\nnew\n>>>>>>> after updating\ny\n"

@@ -629,6 +629,13 @@ class Package:
             deps |= {"actionlib_msgs", "std_msgs"} if self.ros == 1 else {"action_msgs"}
         return tuple(sorted(deps))
 
+    @property
+    def named_inside_a_dependency(self) -> bool:
+        """Whether a dependency's name holds the package's (std_srvs holds `vs`): catkin_lint takes
+        it for the package's name written out instead of ${PROJECT_NAME}, a false notice."""
+        names = {dependency.name for dependency in self.dependencies} | set(self.interface_dependencies)
+        return any(self.name in name for name in names - {self.interfaces_package})
+
     @cached_property
     def dependencies(self) -> tuple[Dependency, ...]:
         """The nodes' dependencies, each once, sorted: what package.xml lists."""

@@ -22,6 +22,26 @@ from .summary import Report
 OURS, BASE, THEIRS, END = "<<<<<<< before updating", "||||||| last update", "=======", ">>>>>>> after updating"
 
 
+_METHOD = re.compile(r"^(\s+)def (\w+)\(")
+
+
+def _methods(lines: list[str]) -> list[str] | None:
+    """The names of the methods `lines` define, when they are whole methods of one class (at
+    one indent) and nothing else; else None."""
+    body = [line for line in lines if line.strip()]
+    first = _METHOD.match(body[0]) if body else None
+    if not first:
+        return None
+    names = []
+    for line in body:
+        method = _METHOD.match(line)
+        if method and method.group(1) == first.group(1):
+            names.append(method.group(2))
+        elif not line.startswith(first.group(1) + " "):
+            return None
+    return names
+
+
 def _settle(ours: list[str], base: list[str], theirs: list[str]) -> list[str] | None:
     """Both sides' changes of one conflicting region, when they fit together; else None."""
     if ours == base:
@@ -29,7 +49,11 @@ def _settle(ours: list[str], base: list[str], theirs: list[str]) -> list[str] | 
     if theirs == base or ours == theirs:
         return ours
     if not base:
-        return None  # both added lines at one place: which order is right is the user's call
+        # Both added lines at one place: which order is right is the user's call, unless both
+        # added whole Python methods of other names (the user's at the end of a class, where a
+        # new starter method lands too): a class's methods have no order, so both are kept.
+        mine, new = _methods(ours), _methods(theirs)
+        return ours + theirs if mine and new and not set(mine) & set(new) else None
     for side, other in ((theirs, ours), (ours, theirs)):
         if side[:len(base)] == base:  # `side` kept the run and added lines after it
             return other + side[len(base):]
